@@ -1,0 +1,25 @@
+// The scene-file reader: a hand-written, line-oriented parser that enforces every rule
+// of SPEC section 2 and throws SceneError with the file and line of the first mistake.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "raytracer/scene.h"
+
+namespace rt {
+
+// Images larger than this are refused before anything is allocated (3 bytes a pixel,
+// so the largest image needs 300 MB). Each side is limited too, so that neither
+// columns*rows nor any per-row arithmetic can overflow.
+inline constexpr long long kMaxImagePixels = 100'000'000;
+inline constexpr int kMaxImageSide = 100'000;
+
+// Parses the text of a scene file; file_name is used only in messages.
+Scene parse_scene(std::string_view text, const std::string& file_name);
+
+// Reads and parses a scene file. Refuses what is not a scene file at all (missing,
+// unreadable, a directory, empty, binary) with a SceneError that has no line.
+Scene load_scene(const std::string& path);
+
+}  // namespace rt

@@ -1,0 +1,27 @@
+// The one kind of error a scene can cause: it knows where it happened, and prints as
+// "<file>:<line>: error: <what was found>, <what was expected>".
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace rt {
+
+class SceneError : public std::runtime_error {
+public:
+    // line 0 means the error is about the file as a whole (no line to point at).
+    SceneError(const std::string& file, int line, const std::string& what)
+        : std::runtime_error(format(file, line, what)), line_(line) {}
+
+    int line() const { return line_; }
+
+private:
+    static std::string format(const std::string& file, int line, const std::string& what) {
+        std::string text = file;
+        if (line > 0) text += ":" + std::to_string(line);
+        return text + ": error: " + what;
+    }
+    int line_;
+};
+
+}  // namespace rt

@@ -1,0 +1,80 @@
+// raytracer.exe <scene-file>: renders the scene and writes the P6 image its OUTPUT
+// line names. Exit statuses are listed in usage_text() and README.md.
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <new>
+#include <string>
+
+#include "raytracer/parser.h"
+#include "raytracer/ppm.h"
+#include "raytracer/render.h"
+#include "raytracer/scene_error.h"
+#include "raytracer/version.h"
+
+namespace {
+
+enum ExitStatus : int {
+    kSuccess = 0,
+    kBadScene = 1,    // the scene file is missing, unreadable or wrong
+    kBadUsage = 2,    // the command line is wrong
+    kCannotWrite = 3, // the image could not be written
+    kOutOfMemory = 4,
+};
+
+const char* usage_text() {
+    return "usage: raytracer.exe <scene-file>\n"
+           "       raytracer.exe --help | --version\n"
+           "\n"
+           "Renders a scene of ellipsoids and point lights (Phong shading, hard shadows,\n"
+           "up to 3 mirror bounces) and writes it as a binary PPM (P6) to the file named\n"
+           "by the scene's OUTPUT line, relative to the current directory.\n"
+           "\n"
+           "Scene file: one statement per line, fields separated by spaces or tabs,\n"
+           "in any order:\n"
+           "  NEAR n | LEFT l | RIGHT r | BOTTOM b | TOP t   (each exactly once)\n"
+           "  RES columns rows                              (exactly once)\n"
+           "  SPHERE name x y z sx sy sz r g b Ka Kd Ks Kr n  (any number)\n"
+           "  LIGHT name x y z Ir Ig Ib                     (any number)\n"
+           "  BACK r g b | AMBIENT Ir Ig Ib | OUTPUT file     (each exactly once)\n"
+           "\n"
+           "Exit status: 0 written; 1 bad scene file; 2 bad command line;\n"
+           "3 image not writable; 4 out of memory. On any error nothing is written.\n";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc == 2 && (std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0)) {
+        std::fputs(usage_text(), stdout);
+        return kSuccess;
+    }
+    if (argc == 2 && std::strcmp(argv[1], "--version") == 0) {
+        std::printf("raytracer.exe %s\n", rt::kVersion);
+        return kSuccess;
+    }
+    if (argc != 2 || argv[1][0] == '\0') {
+        std::fprintf(stderr, "raytracer.exe: error: %s, expected exactly one scene file\n%s",
+                     argc < 2 ? "no scene file given" : "more than one argument", usage_text());
+        return kBadUsage;
+    }
+
+    const std::string scene_file = argv[1];
+    try {
+        const rt::Scene scene = rt::load_scene(scene_file);
+        const rt::Image image = rt::render<double>(scene);
+        const std::string error = rt::save_imageP6(image.width, image.height, scene.output.c_str(), image.rgb.data());
+        if (!error.empty()) {
+            std::fprintf(stderr, "%s:%d: error: OUTPUT %s, expected a writable file path\n", scene_file.c_str(),
+                         scene.output_line, error.c_str());
+            return kCannotWrite;
+        }
+        return kSuccess;
+    } catch (const rt::SceneError& e) {
+        std::fprintf(stderr, "%s\n", e.what());
+        return kBadScene;
+    } catch (const std::bad_alloc&) {
+        std::fprintf(stderr, "raytracer.exe: error: out of memory rendering '%s'\n", scene_file.c_str());
+        return kOutOfMemory;
+    }
+}

@@ -1,0 +1,333 @@
+// Scene-file parsing. One statement per line: a keyword and a fixed number of fields,
+// all separated by spaces, tabs or CR (SPEC section 2). Reading line by line, rather
+// than as one token stream, lets a short SPHERE line be reported on its own line.
+#include "raytracer/parser.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <optional>
+#include <sstream>
+#include <vector>
+
+#include "raytracer/scene_error.h"
+
+namespace rt {
+namespace {
+
+bool is_separator(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+bool is_digit(char c) { return c >= '0' && c <= '9'; }
+
+// A token as it may appear in a message: control and non-ASCII bytes escaped, and
+// long tokens cut, so one bad byte or a 200 KB token still gives a one-line message.
+std::string shown(std::string_view token) {
+    constexpr std::size_t kMaxShown = 40;
+    std::string out = "'";
+    for (std::size_t i = 0; i < token.size() && i < kMaxShown; ++i) {
+        const auto c = static_cast<unsigned char>(token[i]);
+        if (c >= 0x20 && c < 0x7f) {
+            out += static_cast<char>(c);
+        } else {
+            static const char* const hex = "0123456789abcdef";
+            out += "\\x";
+            out += hex[c >> 4];
+            out += hex[c & 15];
+        }
+    }
+    if (token.size() > kMaxShown) out += "...' (" + std::to_string(token.size()) + " characters)";
+    else out += "'";
+    return out;
+}
+
+// Decimal numbers only: [+-] digits [. digits] [(e|E) [+-] digits], with at least one
+// digit before or after the point. strtod alone would also take hex, "inf" and "nan".
+bool is_decimal_number(std::string_view s) {
+    std::size_t i = 0;
+    if (i < s.size() && (s[i] == '+' || s[i] == '-')) ++i;
+    std::size_t digits = 0;
+    while (i < s.size() && is_digit(s[i])) ++i, ++digits;
+    if (i < s.size() && s[i] == '.') {
+        ++i;
+        while (i < s.size() && is_digit(s[i])) ++i, ++digits;
+    }
+    if (digits == 0) return false;
+    if (i < s.size() && (s[i] == 'e' || s[i] == 'E')) {
+        ++i;
+        if (i < s.size() && (s[i] == '+' || s[i] == '-')) ++i;
+        std::size_t exponent_digits = 0;
+        while (i < s.size() && is_digit(s[i])) ++i, ++exponent_digits;
+        if (exponent_digits == 0) return false;
+    }
+    return i == s.size();
+}
+
+std::optional<double> to_double(std::string_view token) {
+    if (!is_decimal_number(token)) return std::nullopt;
+    // The program never calls setlocale, so strtod reads '.' as the decimal point.
+    const std::string text(token);
+    errno = 0;
+    const double value = std::strtod(text.c_str(), nullptr);
+    if (!std::isfinite(value)) return std::nullopt;  // overflow, e.g. 1e999
+    return value;
+}
+
+std::optional<long long> to_integer(std::string_view token) {
+    std::size_t i = (!token.empty() && token[0] == '+') ? 1 : 0;
+    if (i == token.size()) return std::nullopt;
+    long long value = 0;
+    for (; i < token.size(); ++i) {
+        if (!is_digit(token[i])) return std::nullopt;
+        value = value * 10 + (token[i] - '0');
+        if (value > kMaxImagePixels) return value;  // big enough to be refused; stop before overflow
+    }
+    return value;
+}
+
+enum class Field { Name, Number, Count };
+
+struct Statement {
+    const char* keyword;
+    bool required_once;                  // false: SPHERE and LIGHT, any number of times
+    std::vector<const char*> field_names;
+    std::vector<Field> field_kinds;
+};
+
+const std::vector<Statement>& statements() {
+    using F = Field;
+    static const std::vector<Statement> table = {
+        {"NEAR", true, {"n"}, {F::Number}},
+        {"LEFT", true, {"l"}, {F::Number}},
+        {"RIGHT", true, {"r"}, {F::Number}},
+        {"BOTTOM", true, {"b"}, {F::Number}},
+        {"TOP", true, {"t"}, {F::Number}},
+        {"RES", true, {"x", "y"}, {F::Count, F::Count}},
+        {"SPHERE",
+         false,
+         {"name", "pos x", "pos y", "pos z", "scl x", "scl y", "scl z", "r", "g", "b", "Ka", "Kd", "Ks", "Kr",
+          "n"},
+         {F::Name, F::Number, F::Number, F::Number, F::Number, F::Number, F::Number, F::Number, F::Number,
+          F::Number, F::Number, F::Number, F::Number, F::Number, F::Number}},
+        {"LIGHT",
+         false,
+         {"name", "pos x", "pos y", "pos z", "Ir", "Ig", "Ib"},
+         {F::Name, F::Number, F::Number, F::Number, F::Number, F::Number, F::Number}},
+        {"BACK", true, {"r", "g", "b"}, {F::Number, F::Number, F::Number}},
+        {"AMBIENT", true, {"Ir", "Ig", "Ib"}, {F::Number, F::Number, F::Number}},
+        {"OUTPUT", true, {"name"}, {F::Name}},
+    };
+    return table;
+}
+
+std::string usage_of(const Statement& s) {
+    std::string text = s.keyword;
+    for (const char* name : s.field_names) text += std::string(" <") + name + ">";
+    return text;
+}
+
+std::string keyword_list() {
+    std::string text;
+    for (const Statement& s : statements()) text += (text.empty() ? "" : ", ") + std::string(s.keyword);
+    return text;
+}
+
+std::vector<std::string_view> split(std::string_view line) {
+    std::vector<std::string_view> tokens;
+    std::size_t i = 0;
+    while (i < line.size()) {
+        while (i < line.size() && is_separator(line[i])) ++i;
+        const std::size_t start = i;
+        while (i < line.size() && !is_separator(line[i])) ++i;
+        if (i > start) tokens.push_back(line.substr(start, i - start));
+    }
+    return tokens;
+}
+
+// The fields of one statement, converted and checked for form (not yet for meaning).
+struct Fields {
+    std::vector<std::string_view> names;
+    std::vector<double> numbers;
+    std::vector<long long> counts;
+};
+
+class SceneParser {
+public:
+    explicit SceneParser(const std::string& file) : file_(file) {}
+
+    Scene parse(std::string_view text) {
+        // A UTF-8 byte-order mark, as some Windows editors write, is not part of the scene.
+        if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
+        int line_number = 0;
+        while (!text.empty()) {
+            ++line_number;
+            const std::size_t end = text.find('\n');
+            statement(split(text.substr(0, end)), line_number);
+            text.remove_prefix(end == std::string_view::npos ? text.size() : end + 1);
+        }
+        check_complete();
+        return scene_;
+    }
+
+private:
+    [[noreturn]] void fail(int line, const std::string& what) const { throw SceneError(file_, line, what); }
+
+    void statement(const std::vector<std::string_view>& tokens, int line) {
+        if (tokens.empty()) return;  // blank lines are allowed anywhere
+        const Statement* found = nullptr;
+        for (const Statement& s : statements())
+            if (tokens[0] == s.keyword) found = &s;
+        if (found == nullptr)
+            fail(line, "unknown keyword " + shown(tokens[0]) + ", expected one of " + keyword_list());
+
+        const std::size_t given = tokens.size() - 1;
+        const std::size_t wanted = found->field_names.size();
+        if (given != wanted) {
+            fail(line, std::string(found->keyword) + " has " + std::to_string(given) + " field" +
+                           (given == 1 ? "" : "s") + ", expected " + std::to_string(wanted) + ": " +
+                           usage_of(*found));
+        }
+
+        const std::size_t index = static_cast<std::size_t>(found - statements().data());
+        if (found->required_once) {
+            if (first_line_[index] != 0) {
+                fail(line, std::string("a second ") + found->keyword + " (the first is on line " +
+                               std::to_string(first_line_[index]) + "), expected exactly one");
+            }
+            first_line_[index] = line;
+        }
+
+        Fields fields;
+        for (std::size_t i = 0; i < wanted; ++i) {
+            const std::string_view token = tokens[i + 1];
+            const std::string what = std::string(found->keyword) + " <" + found->field_names[i] + "> is " +
+                                     shown(token);
+            switch (found->field_kinds[i]) {
+            case Field::Name:
+                fields.names.push_back(token);
+                break;
+            case Field::Number:
+                if (auto value = to_double(token)) fields.numbers.push_back(*value);
+                else fail(line, what + ", expected a finite decimal number");
+                break;
+            case Field::Count:
+                if (auto value = to_integer(token); value && *value > 0) fields.counts.push_back(*value);
+                else fail(line, what + ", expected a positive whole number");
+                break;
+            }
+        }
+        apply(found->keyword, fields, line);
+    }
+
+    void apply(std::string_view keyword, const Fields& f, int line) {
+        const std::vector<double>& v = f.numbers;
+        if (keyword == "NEAR") {
+            if (!(v[0] > 0)) fail(line, "NEAR is " + format(v[0]) + ", expected a distance greater than 0");
+            scene_.near_plane = v[0];
+        } else if (keyword == "LEFT") {
+            scene_.left = v[0];
+        } else if (keyword == "RIGHT") {
+            scene_.right = v[0];
+        } else if (keyword == "BOTTOM") {
+            scene_.bottom = v[0];
+        } else if (keyword == "TOP") {
+            scene_.top = v[0];
+        } else if (keyword == "RES") {
+            const long long columns = f.counts[0], rows = f.counts[1];
+            if (columns > kMaxImageSide || rows > kMaxImageSide || columns * rows > kMaxImagePixels) {
+                fail(line, "RES " + std::to_string(columns) + " " + std::to_string(rows) +
+                               " is too large, expected at most " + std::to_string(kMaxImageSide) +
+                               " a side and " + std::to_string(kMaxImagePixels) + " pixels");
+            }
+            scene_.columns = static_cast<int>(columns);
+            scene_.rows = static_cast<int>(rows);
+        } else if (keyword == "SPHERE") {
+            SphereSpec s;
+            s.name = std::string(f.names[0]);
+            s.centre = {v[0], v[1], v[2]};
+            s.scale = {v[3], v[4], v[5]};
+            s.colour = {v[6], v[7], v[8]};
+            s.ka = v[9];
+            s.kd = v[10];
+            s.ks = v[11];
+            s.kr = v[12];
+            s.shininess = v[13];
+            s.line = line;
+            if (s.scale.x == 0 || s.scale.y == 0 || s.scale.z == 0)
+                fail(line, "SPHERE " + shown(s.name) + " has a zero scale, expected non-zero scales");
+            scene_.spheres.push_back(std::move(s));
+        } else if (keyword == "LIGHT") {
+            scene_.lights.push_back({std::string(f.names[0]), {v[0], v[1], v[2]}, {v[3], v[4], v[5]}, line});
+        } else if (keyword == "BACK") {
+            scene_.background = {v[0], v[1], v[2]};
+        } else if (keyword == "AMBIENT") {
+            scene_.ambient = {v[0], v[1], v[2]};
+        } else if (keyword == "OUTPUT") {
+            scene_.output = std::string(f.names[0]);
+            scene_.output_line = line;
+        }
+    }
+
+    static std::string format(double value) {
+        std::ostringstream out;
+        out << value;
+        return out.str();
+    }
+
+    int line_of(std::string_view keyword) const {
+        for (std::size_t i = 0; i < statements().size(); ++i)
+            if (keyword == statements()[i].keyword) return first_line_[i];
+        return 0;
+    }
+
+    void check_complete() const {
+        for (std::size_t i = 0; i < statements().size(); ++i) {
+            if (statements()[i].required_once && first_line_[i] == 0) {
+                fail(0, std::string("no ") + statements()[i].keyword + " line, expected exactly one: " +
+                            usage_of(statements()[i]));
+            }
+        }
+        // Each pair is reported on the line of whichever of the two came later.
+        if (!(scene_.left < scene_.right)) {
+            fail(std::max(line_of("LEFT"), line_of("RIGHT")),
+                 "LEFT " + format(scene_.left) + " and RIGHT " + format(scene_.right) +
+                     ", expected LEFT < RIGHT");
+        }
+        if (!(scene_.bottom < scene_.top)) {
+            fail(std::max(line_of("BOTTOM"), line_of("TOP")),
+                 "BOTTOM " + format(scene_.bottom) + " and TOP " + format(scene_.top) +
+                     ", expected BOTTOM < TOP");
+        }
+    }
+
+    std::string file_;
+    Scene scene_;
+    std::vector<int> first_line_ = std::vector<int>(statements().size());  // per kind: its first line
+};
+
+}  // namespace
+
+Scene parse_scene(std::string_view text, const std::string& file_name) {
+    return SceneParser(file_name).parse(text);
+}
+
+Scene load_scene(const std::string& path) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) throw SceneError(path, 0, "is a directory, expected a scene file");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw SceneError(path, 0, "cannot be opened for reading, expected a readable scene file");
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (in.bad()) throw SceneError(path, 0, "could not be read, expected a readable scene file");
+    if (text.find_first_not_of(" \t\r\n\v\f") == std::string::npos)
+        throw SceneError(path, 0, "is empty, expected a scene file");
+    // A NUL byte never occurs in a text file; say so rather than "unknown keyword".
+    if (const std::size_t nul = text.find('\0'); nul != std::string::npos) {
+        const int line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(nul), '\n'));
+        throw SceneError(path, line, "a NUL byte (a binary file?), expected a text scene file");
+    }
+    return parse_scene(text, path);
+}
+
+}  // namespace rt

@@ -1,0 +1,141 @@
+// PPM output, after the course's ppm.cpp template, made safe: a failed or interrupted
+// write never leaves a partial image nor clobbers an existing one.
+#include "raytracer/ppm.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <system_error>
+
+#ifdef _WIN32
+#ifndef NOMINMAX
+#define NOMINMAX
+#endif
+#include <windows.h>
+#endif
+
+namespace rt {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Moves from onto to, replacing to if it exists. POSIX rename() does that atomically;
+// on Windows std::filesystem::rename is not guaranteed to replace an existing file
+// with every standard library, so MoveFileExW is asked to explicitly.
+bool replace_file(const fs::path& from, const fs::path& to, std::string& error) {
+#ifdef _WIN32
+    if (MoveFileExW(from.c_str(), to.c_str(), MOVEFILE_REPLACE_EXISTING | MOVEFILE_WRITE_THROUGH)) return true;
+    error = "cannot replace it (Windows error " + std::to_string(GetLastError()) + ")";
+    return false;
+#else
+    std::error_code ec;
+    fs::rename(from, to, ec);
+    if (!ec) return true;
+    error = ec.message();
+    return false;
+#endif
+}
+
+// A name beside the target, so that the final rename stays on one file system.
+fs::path temporary_name_for(const fs::path& target) {
+    std::random_device random;
+    std::ostringstream suffix;
+    suffix << ".partial-" << std::hex << random() << random();
+    fs::path name = target;
+    name += suffix.str();
+    return name;
+}
+
+template <typename WriteBody>
+std::string save_atomically(const char* file_name, WriteBody write_body) {
+    if (file_name == nullptr || *file_name == '\0') return "no file name given";
+    const fs::path target = fs::u8path(file_name);
+    const fs::path temporary = temporary_name_for(target);
+    {
+        std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+        if (!out) return "'" + std::string(file_name) + "' cannot be created (is its folder missing or read-only?)";
+        write_body(out);
+        out.close();
+        if (!out) {
+            std::error_code ignored;
+            fs::remove(temporary, ignored);
+            return "'" + std::string(file_name) + "' could not be written in full (is the disk full?)";
+        }
+    }
+    std::string error;
+    if (!replace_file(temporary, target, error)) {
+        std::error_code ignored;
+        fs::remove(temporary, ignored);
+        return "'" + std::string(file_name) + "' cannot be replaced: " + error;
+    }
+    return {};
+}
+
+}  // namespace
+
+std::string save_imageP6(int width, int height, const char* file_name, const unsigned char* pixels) {
+    return save_atomically(file_name, [&](std::ofstream& out) {
+        out << "P6\n" << width << ' ' << height << "\n255\n";
+        out.write(reinterpret_cast<const char*>(pixels),
+                  static_cast<std::streamsize>(width) * static_cast<std::streamsize>(height) * 3);
+    });
+}
+
+std::string save_imageP3(int width, int height, const char* file_name, const unsigned char* pixels) {
+    return save_atomically(file_name, [&](std::ofstream& out) {
+        out << "P3\n" << width << ' ' << height << "\n255\n";
+        const unsigned char* p = pixels;
+        for (int row = 0; row < height; ++row) {
+            for (int column = 0; column < width; ++column, p += 3)
+                out << ' ' << int{p[0]} << ' ' << int{p[1]} << ' ' << int{p[2]};
+            out << '\n';
+        }
+    });
+}
+
+bool read_ppm(const std::string& file_name, Image& image, std::string& error) {
+    std::ifstream in(fs::u8path(file_name), std::ios::binary);
+    if (!in) {
+        error = "cannot open '" + file_name + "'";
+        return false;
+    }
+    // Header: P6, width, height, maxval, separated by whitespace and # comments,
+    // then exactly one whitespace byte before the pixels.
+    std::string fields[4];
+    for (std::string& field : fields) {
+        int c = in.get();
+        while (c != EOF && (std::isspace(c) || c == '#')) {
+            if (c == '#')
+                while (c != EOF && c != '\n') c = in.get();
+            c = in.get();
+        }
+        while (c != EOF && !std::isspace(c)) {
+            field += static_cast<char>(c);
+            c = in.get();
+        }
+    }
+    long long width = 0, height = 0;
+    try {
+        width = std::stoll(fields[1]);
+        height = std::stoll(fields[2]);
+    } catch (const std::exception&) {
+        width = height = 0;
+    }
+    if (fields[0] != "P6" || fields[3] != "255" || width <= 0 || height <= 0 || width * height > (1LL << 31)) {
+        error = "'" + file_name + "' is not a binary PPM (P6) with maxval 255";
+        return false;
+    }
+    image.width = static_cast<int>(width);
+    image.height = static_cast<int>(height);
+    image.rgb.assign(static_cast<std::size_t>(width * height * 3), 0);
+    in.read(reinterpret_cast<char*>(image.rgb.data()), static_cast<std::streamsize>(image.rgb.size()));
+    if (in.gcount() != static_cast<std::streamsize>(image.rgb.size())) {
+        error = "'" + file_name + "' is shorter than its header says";
+        return false;
+    }
+    return true;
+}
+
+}  // namespace rt
