@@ -16,9 +16,9 @@ namespace {
 
 enum ExitStatus : int {
     kSuccess = 0,
-    kBadScene = 1,    // the scene file is missing, unreadable or wrong
-    kBadUsage = 2,    // the command line is wrong
-    kCannotWrite = 3, // the image could not be written
+    kBadScene = 1,     // the scene file is missing, unreadable or wrong
+    kBadUsage = 2,     // the command line is wrong
+    kCannotWrite = 3,  // the image could not be written
     kOutOfMemory = 4,
 };
 
@@ -63,10 +63,11 @@ int main(int argc, char** argv) {
     try {
         const rt::Scene scene = rt::load_scene(scene_file);
         const rt::Image image = rt::render<double>(scene);
-        const std::string error = rt::save_imageP6(image.width, image.height, scene.output.c_str(), image.rgb.data());
+        const std::string error =
+            rt::save_imageP6(image.width, image.height, scene.output.c_str(), image.rgb.data());
         if (!error.empty()) {
-            std::fprintf(stderr, "%s:%d: error: OUTPUT %s, expected a writable file path\n", scene_file.c_str(),
-                         scene.output_line, error.c_str());
+            std::fprintf(stderr, "%s:%d: error: OUTPUT %s, expected a writable file path\n",
+                         scene_file.c_str(), scene.output_line, error.c_str());
             return kCannotWrite;
         }
         return kSuccess;

@@ -38,8 +38,10 @@ std::string shown(std::string_view token) {
             out += hex[c & 15];
         }
     }
-    if (token.size() > kMaxShown) out += "...' (" + std::to_string(token.size()) + " characters)";
-    else out += "'";
+    if (token.size() > kMaxShown)
+        out += "...' (" + std::to_string(token.size()) + " characters)";
+    else
+        out += "'";
     return out;
 }
 
@@ -91,7 +93,7 @@ enum class Field { Name, Number, Count };
 
 struct Statement {
     const char* keyword;
-    bool required_once;                  // false: SPHERE and LIGHT, any number of times
+    bool required_once;  // false: SPHERE and LIGHT, any number of times
     std::vector<const char*> field_names;
     std::vector<Field> field_kinds;
 };
@@ -202,20 +204,24 @@ private:
         Fields fields;
         for (std::size_t i = 0; i < wanted; ++i) {
             const std::string_view token = tokens[i + 1];
-            const std::string what = std::string(found->keyword) + " <" + found->field_names[i] + "> is " +
-                                     shown(token);
+            const std::string what =
+                std::string(found->keyword) + " <" + found->field_names[i] + "> is " + shown(token);
             switch (found->field_kinds[i]) {
-            case Field::Name:
-                fields.names.push_back(token);
-                break;
-            case Field::Number:
-                if (auto value = to_double(token)) fields.numbers.push_back(*value);
-                else fail(line, what + ", expected a finite decimal number");
-                break;
-            case Field::Count:
-                if (auto value = to_integer(token); value && *value > 0) fields.counts.push_back(*value);
-                else fail(line, what + ", expected a positive whole number");
-                break;
+                case Field::Name:
+                    fields.names.push_back(token);
+                    break;
+                case Field::Number:
+                    if (auto value = to_double(token))
+                        fields.numbers.push_back(*value);
+                    else
+                        fail(line, what + ", expected a finite decimal number");
+                    break;
+                case Field::Count:
+                    if (auto value = to_integer(token); value && *value > 0)
+                        fields.counts.push_back(*value);
+                    else
+                        fail(line, what + ", expected a positive whole number");
+                    break;
             }
         }
         apply(found->keyword, fields, line);
@@ -285,20 +291,20 @@ private:
     void check_complete() const {
         for (std::size_t i = 0; i < statements().size(); ++i) {
             if (statements()[i].required_once && first_line_[i] == 0) {
-                fail(0, std::string("no ") + statements()[i].keyword + " line, expected exactly one: " +
-                            usage_of(statements()[i]));
+                fail(0, std::string("no ") + statements()[i].keyword +
+                            " line, expected exactly one: " + usage_of(statements()[i]));
             }
         }
         // Each pair is reported on the line of whichever of the two came later.
         if (!(scene_.left < scene_.right)) {
-            fail(std::max(line_of("LEFT"), line_of("RIGHT")),
-                 "LEFT " + format(scene_.left) + " and RIGHT " + format(scene_.right) +
-                     ", expected LEFT < RIGHT");
+            fail(std::max(line_of("LEFT"), line_of("RIGHT")), "LEFT " + format(scene_.left) + " and RIGHT " +
+                                                                  format(scene_.right) +
+                                                                  ", expected LEFT < RIGHT");
         }
         if (!(scene_.bottom < scene_.top)) {
-            fail(std::max(line_of("BOTTOM"), line_of("TOP")),
-                 "BOTTOM " + format(scene_.bottom) + " and TOP " + format(scene_.top) +
-                     ", expected BOTTOM < TOP");
+            fail(std::max(line_of("BOTTOM"), line_of("TOP")), "BOTTOM " + format(scene_.bottom) +
+                                                                  " and TOP " + format(scene_.top) +
+                                                                  ", expected BOTTOM < TOP");
         }
     }
 
@@ -315,7 +321,8 @@ Scene parse_scene(std::string_view text, const std::string& file_name) {
 
 Scene load_scene(const std::string& path) {
     std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) throw SceneError(path, 0, "is a directory, expected a scene file");
+    if (std::filesystem::is_directory(path, ec))
+        throw SceneError(path, 0, "is a directory, expected a scene file");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw SceneError(path, 0, "cannot be opened for reading, expected a readable scene file");
     const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -324,7 +331,8 @@ Scene load_scene(const std::string& path) {
         throw SceneError(path, 0, "is empty, expected a scene file");
     // A NUL byte never occurs in a text file; say so rather than "unknown keyword".
     if (const std::size_t nul = text.find('\0'); nul != std::string::npos) {
-        const int line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(nul), '\n'));
+        const int line =
+            1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(nul), '\n'));
         throw SceneError(path, line, "a NUL byte (a binary file?), expected a text scene file");
     }
     return parse_scene(text, path);

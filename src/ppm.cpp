@@ -26,7 +26,8 @@ namespace fs = std::filesystem;
 // with every standard library, so MoveFileExW is asked to explicitly.
 bool replace_file(const fs::path& from, const fs::path& to, std::string& error) {
 #ifdef _WIN32
-    if (MoveFileExW(from.c_str(), to.c_str(), MOVEFILE_REPLACE_EXISTING | MOVEFILE_WRITE_THROUGH)) return true;
+    if (MoveFileExW(from.c_str(), to.c_str(), MOVEFILE_REPLACE_EXISTING | MOVEFILE_WRITE_THROUGH))
+        return true;
     error = "cannot replace it (Windows error " + std::to_string(GetLastError()) + ")";
     return false;
 #else
@@ -55,7 +56,8 @@ std::string save_atomically(const char* file_name, WriteBody write_body) {
     const fs::path temporary = temporary_name_for(target);
     {
         std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-        if (!out) return "'" + std::string(file_name) + "' cannot be created (is its folder missing or read-only?)";
+        if (!out)
+            return "'" + std::string(file_name) + "' cannot be created (is its folder missing or read-only?)";
         write_body(out);
         out.close();
         if (!out) {
@@ -123,7 +125,8 @@ bool read_ppm(const std::string& file_name, Image& image, std::string& error) {
     } catch (const std::exception&) {
         width = height = 0;
     }
-    if (fields[0] != "P6" || fields[3] != "255" || width <= 0 || height <= 0 || width * height > (1LL << 31)) {
+    if (fields[0] != "P6" || fields[3] != "255" || width <= 0 || height <= 0 ||
+        width * height > (1LL << 31)) {
         error = "'" + file_name + "' is not a binary PPM (P6) with maxval 255";
         return false;
     }

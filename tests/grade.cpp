@@ -70,13 +70,20 @@ bool parse_arguments(int argc, char** argv, Options& options) {
         const std::string& a = args[i];
         const bool has_value = i + 1 < args.size();
         try {
-            if (a == "--raytracer" && has_value) options.raytracer = args[++i];
-            else if (a == "--keys" && has_value) options.keys = args[++i];
-            else if (a == "--only" && has_value) options.only = args[++i];
-            else if (a == "--max-pixels" && has_value) options.max_pixels = std::stoll(args[++i]);
-            else if (a == "--max-total" && has_value) options.max_total = std::stoll(args[++i]);
-            else if (!a.empty() && a[0] != '-') options.scenes = a;
-            else return false;
+            if (a == "--raytracer" && has_value)
+                options.raytracer = args[++i];
+            else if (a == "--keys" && has_value)
+                options.keys = args[++i];
+            else if (a == "--only" && has_value)
+                options.only = args[++i];
+            else if (a == "--max-pixels" && has_value)
+                options.max_pixels = std::stoll(args[++i]);
+            else if (a == "--max-total" && has_value)
+                options.max_total = std::stoll(args[++i]);
+            else if (!a.empty() && a[0] != '-')
+                options.scenes = a;
+            else
+                return false;
         } catch (const std::exception&) {
             return false;
         }
@@ -93,7 +100,8 @@ int main(int argc, char** argv) {
                      "[--max-total N] [SCENES_DIR]\n";
         return 2;
     }
-    if (options.raytracer.empty()) options.raytracer = fs::absolute(argv[0]).parent_path().parent_path() / "raytracer.exe";
+    if (options.raytracer.empty())
+        options.raytracer = fs::absolute(argv[0]).parent_path().parent_path() / "raytracer.exe";
     if (options.keys.empty()) options.keys = options.scenes.parent_path() / "keys";
 
     std::error_code ec;
@@ -111,12 +119,13 @@ int main(int argc, char** argv) {
     std::vector<fs::path> scenes;
     for (const fs::directory_entry& entry : fs::directory_iterator(options.scenes)) {
         const fs::path& p = entry.path();
-        if (p.extension() == ".txt" && (options.only.empty() || p.stem() == options.only)) scenes.push_back(p);
+        if (p.extension() == ".txt" && (options.only.empty() || p.stem() == options.only))
+            scenes.push_back(p);
     }
     std::sort(scenes.begin(), scenes.end());
     if (scenes.empty()) {
-        std::cerr << "grade: error: no scene " << (options.only.empty() ? "*.txt" : options.only)
-                  << " in " << options.scenes.string() << "\n";
+        std::cerr << "grade: error: no scene " << (options.only.empty() ? "*.txt" : options.only) << " in "
+                  << options.scenes.string() << "\n";
         return 1;
     }
 
@@ -124,7 +133,8 @@ int main(int argc, char** argv) {
     const fs::path scratch = fs::temp_directory_path() / ("raytracer-grade-" + std::to_string(random()));
     fs::create_directories(scratch);
 
-    std::printf("%-22s %10s %8s %9s  %-6s %s\n", "scene", "differing", "largest", "time ms", "result", "marks");
+    std::printf("%-22s %10s %8s %9s  %-6s %s\n", "scene", "differing", "largest", "time ms", "result",
+                "marks");
     long long total_differing = 0;
     int marks = 0;
     bool all_passed = true;
@@ -140,13 +150,18 @@ int main(int argc, char** argv) {
             fs::remove(output, ec);
             const auto start = std::chrono::steady_clock::now();
             const int status = run_raytracer(options.raytracer, scene, scratch);
-            milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+            milliseconds =
+                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
             rt::Image rendered, key;
             std::string error;
-            if (status != 0) problem = "raytracer.exe failed (status " + std::to_string(status) + ")";
-            else if (!rt::read_ppm(output.string(), rendered, error)) problem = error;
-            else if (!rt::read_ppm(key_for(options.keys, scene).string(), key, error)) problem = error;
-            else diff = rt::compare_images(rendered, key);
+            if (status != 0)
+                problem = "raytracer.exe failed (status " + std::to_string(status) + ")";
+            else if (!rt::read_ppm(output.string(), rendered, error))
+                problem = error;
+            else if (!rt::read_ppm(key_for(options.keys, scene).string(), key, error))
+                problem = error;
+            else
+                diff = rt::compare_images(rendered, key);
             if (problem.empty() && !diff.same_size) problem = "image size differs from the key";
             fs::remove(output, ec);
         } catch (const std::exception& e) {
@@ -169,6 +184,7 @@ int main(int argc, char** argv) {
 
     const bool ok = all_passed && total_differing <= options.max_total;
     std::printf("total: %lld differing pixels in %zu scenes (at most %lld allowed), marks %d/%zu: %s\n",
-                total_differing, scenes.size(), options.max_total, marks, 2 * scenes.size(), ok ? "PASS" : "FAIL");
+                total_differing, scenes.size(), options.max_total, marks, 2 * scenes.size(),
+                ok ? "PASS" : "FAIL");
     return ok ? 0 : 1;
 }

@@ -23,9 +23,15 @@ struct Ellipsoid {
 template <typename Real>
 Ellipsoid<Real> make_ellipsoid(const SphereSpec& s) {
     const auto scale = Vec3<Real>::from(s.scale);
-    return {Vec3<Real>::from(s.centre), scale, scale * scale, Vec3<Real>::from(s.colour),
-            static_cast<Real>(s.ka), static_cast<Real>(s.kd), static_cast<Real>(s.ks),
-            static_cast<Real>(s.kr), static_cast<Real>(s.shininess)};
+    return {Vec3<Real>::from(s.centre),
+            scale,
+            scale * scale,
+            Vec3<Real>::from(s.colour),
+            static_cast<Real>(s.ka),
+            static_cast<Real>(s.kd),
+            static_cast<Real>(s.ks),
+            static_cast<Real>(s.kr),
+            static_cast<Real>(s.shininess)};
 }
 
 // Both ray parameters where the ray meets the surface, near <= far; hit is false when

@@ -13,8 +13,8 @@
 namespace rt {
 
 // Epsilons and limits that the course keys fix (SPEC sections 3 and 5).
-inline constexpr double kEyeRayMinT = 1.0;         // the near plane is at t = 1
-inline constexpr double kShadowRayMinT = 0.001;    // the keys need 0.001, not 0.0001
+inline constexpr double kEyeRayMinT = 1.0;       // the near plane is at t = 1
+inline constexpr double kShadowRayMinT = 0.001;  // the keys need 0.001, not 0.0001
 inline constexpr double kReflectedRayMinT = 0.0001;
 inline constexpr int kMaxReflections = 3;
 
