@@ -1,2 +1,135 @@
+// Ray/ellipsoid intersection: both roots, the near-plane cut, tangency, misses.
 #include "check.h"
-TEST(placeholder) { CHECK(true); }
+#include "raytracer/ellipsoid.h"
+#include "raytracer/tracer.h"
+
+namespace {
+
+using V = rt::Vec3<double>;
+
+rt::Ellipsoid<double> ellipsoid(V centre, V scale) {
+    rt::SphereSpec s;
+    s.centre = centre;
+    s.scale = scale;
+    return rt::make_ellipsoid<double>(s);
+}
+
+rt::Scene scene_with(V centre, V scale) {
+    rt::Scene scene;
+    rt::SphereSpec s;
+    s.centre = centre;
+    s.scale = scale;
+    scene.spheres.push_back(s);
+    return scene;
+}
+
+}  // namespace
+
+TEST(entering_and_leaving_roots_of_a_unit_sphere) {
+    const auto r = rt::intersect(ellipsoid({0, 0, -5}, {1, 1, 1}), V{}, V{0, 0, -1});
+    CHECK(r.hit);
+    CHECK_NEAR(r.near, 4.0, 1e-15);
+    CHECK_NEAR(r.far, 6.0, 1e-15);
+}
+
+TEST(t_is_the_same_in_unit_and_world_space) {
+    // The course's s1: scaled (2, 4, 2) at z = -10, met along -z at z = -8 and -12;
+    // a direction of length 2 halves every t.
+    const auto e = ellipsoid({0, 0, -10}, {2, 4, 2});
+    const auto r = rt::intersect(e, V{}, V{0, 0, -2});
+    CHECK(r.hit);
+    CHECK_NEAR(r.near, 4.0, 1e-15);
+    CHECK_NEAR(r.far, 6.0, 1e-15);
+    const auto up = rt::intersect(e, V{0, -10, -10}, V{0, 1, 0});
+    CHECK_NEAR(up.near, 6.0, 1e-14);
+    CHECK_NEAR(up.far, 14.0, 1e-14);
+}
+
+TEST(a_ray_from_inside_has_one_root_behind_it) {
+    const auto r = rt::intersect(ellipsoid({0, 0, 0}, {3, 1, 2}), V{}, V{1, 0, 0});
+    CHECK(r.hit);
+    CHECK_NEAR(r.near, -3.0, 1e-15);
+    CHECK_NEAR(r.far, 3.0, 1e-15);
+}
+
+TEST(a_ray_that_passes_by_misses) {
+    CHECK(!rt::intersect(ellipsoid({0, 2.001, -5}, {1, 1, 1}), V{}, V{0, 0, -1}).hit);
+    CHECK(!rt::intersect(ellipsoid({0, 0, -5}, {1, 1, 1}), V{}, V{0, 1, 0}).hit);
+}
+
+TEST(an_exactly_tangent_ray_is_a_hit) {
+    const auto r = rt::intersect(ellipsoid({0, 1, -5}, {1, 1, 1}), V{}, V{0, 0, -1});
+    CHECK(r.hit);
+    CHECK_NEAR(r.near, 5.0, 1e-12);
+    CHECK_NEAR(r.far, 5.0, 1e-12);
+    // testShadow's eye ray through pixel (400, 150) touches s1 = unit sphere at (3, 3, -8)
+    // (SPEC section 4); in double its discriminant rounds a little below zero.
+    const double x = -1.0 + 2.0 * 400 / 600, y = 1.0 - 2.0 * 150 / 600;
+    const auto shadow = rt::intersect(ellipsoid({3, 3, -8}, {1, 1, 1}), V{}, V{x, y, -1});
+    CHECK(shadow.hit);
+    CHECK_NEAR(shadow.near, shadow.far, 1e-6);
+}
+
+TEST(negative_scales_give_the_same_ellipsoid) {
+    const auto a = rt::intersect(ellipsoid({1, 2, -9}, {2, 3, 1}), V{}, V{0.1, 0.2, -1});
+    const auto b = rt::intersect(ellipsoid({1, 2, -9}, {-2, 3, -1}), V{}, V{0.1, 0.2, -1});
+    CHECK(a.hit && b.hit);
+    CHECK_EQ(a.near, b.near);
+    CHECK_EQ(a.far, b.far);
+    const V p{1, 2, -8};  // the point of the surface nearest the eye
+    CHECK_EQ(rt::outward_normal(ellipsoid({1, 2, -9}, {-2, 3, -1}), p).z, 1.0);
+}
+
+TEST(normal_is_position_over_scale_squared) {
+    const V n = rt::outward_normal(ellipsoid({0, 0, 0}, {2, 1, 1}), V{std::sqrt(2.0), std::sqrt(0.5), 0});
+    // (sqrt2/4, sqrt(0.5), 0) normalised
+    const double len = std::sqrt(2.0 / 16 + 0.5);
+    CHECK_NEAR(n.x, std::sqrt(2.0) / 4 / len, 1e-15);
+    CHECK_NEAR(n.y, std::sqrt(0.5) / len, 1e-15);
+}
+
+TEST(the_near_plane_cuts_ellipsoids_open) {
+    // A sphere of radius 0.5 centred on the near plane: the eye ray meets it at t = 0.5
+    // (in front of the near plane, cut away) and t = 1.5, its inner surface.
+    const rt::Tracer<double> tracer(scene_with({0, 0, -1}, {0.5, 0.5, 0.5}));
+    const auto hit = tracer.nearest_hit(V{}, V{0, 0, -1}, 1.0);
+    CHECK(hit.ellipsoid != nullptr);
+    CHECK_NEAR(hit.t, 1.5, 1e-15);
+    CHECK(hit.inside);
+    // Entirely between the eye and the near plane: not visible.
+    const rt::Tracer<double> before(scene_with({0, 0, -0.5}, {0.2, 0.2, 0.2}));
+    CHECK(before.nearest_hit(V{}, V{0, 0, -1}, 1.0).ellipsoid == nullptr);
+    // Behind the eye: not visible.
+    const rt::Tracer<double> behind(scene_with({0, 0, 5}, {1, 1, 1}));
+    CHECK(behind.nearest_hit(V{}, V{0, 0, -1}, 1.0).ellipsoid == nullptr);
+}
+
+TEST(a_hit_exactly_on_the_near_plane_is_not_visible) {
+    // keyIllum's rim pixels: s4 = (0,0,-1) scaled (0.25,0.25,0.5), pixel (240, 345)
+    // of 600x600 meets it at exactly t = 1 (a 3-4-5 triangle) and t = 0.6.
+    const rt::Tracer<double> tracer(scene_with({0, 0, -1}, {0.25, 0.25, 0.5}));
+    const double x = -1.0 + 2.0 * 240 / 600, y = 1.0 - 2.0 * 345 / 600;
+    CHECK(tracer.nearest_hit(V{}, V{x, y, -1}, 1.0).ellipsoid == nullptr);
+    // One pixel further in, the inner surface is visible.
+    const double x2 = -1.0 + 2.0 * 241 / 600;
+    CHECK(tracer.nearest_hit(V{}, V{x2, y, -1}, 1.0).ellipsoid != nullptr);
+}
+
+TEST(the_nearest_of_several_is_taken) {
+    rt::Scene scene = scene_with({0, 0, -10}, {1, 1, 1});
+    scene.spheres.push_back(scene.spheres[0]);
+    scene.spheres[1].centre = {0, 0, -5};
+    const rt::Tracer<double> tracer(scene);
+    const auto hit = tracer.nearest_hit(V{}, V{0, 0, -1}, 1.0);
+    CHECK_NEAR(hit.t, 4.0, 1e-15);
+    CHECK(!hit.inside);
+}
+
+TEST(shadow_rays_count_hits_strictly_between_point_and_light) {
+    const rt::Tracer<double> tracer(scene_with({0, 0, -5}, {1, 1, 1}));
+    CHECK(tracer.in_shadow(V{0, 0, -10}, V{0, 0, 10}));  // blocker in between
+    CHECK(!tracer.in_shadow(V{0, 0, -10}, V{0, 0, 3}));  // light stops short of it
+    CHECK(!tracer.in_shadow(V{0, 0, -2}, V{0, 0, 2}));   // blocker behind the point
+    CHECK(tracer.in_shadow(V{0, 0, -6}, V{0, 0, 10}));   // the point's own shell blocks
+    CHECK(!tracer.in_shadow(V{0, 0, -6}, V{0, 0, 1}));   // a light inside lights the inside
+}

@@ -1,2 +1,185 @@
+// The scene parser: layouts the course files use, number forms, and the first
+// mistake reported on its own line.
+#include <string>
+
 #include "check.h"
-TEST(placeholder) { CHECK(true); }
+#include "raytracer/parser.h"
+#include "raytracer/scene_error.h"
+
+namespace {
+
+const char* const kMinimal =
+    "NEAR 1\nLEFT -1\nRIGHT 1\nBOTTOM -1\nTOP 1\nRES 4 3\n"
+    "SPHERE s1 0 0 -10 2 4 2 0.5 0 0 1 1 0.9 0 50\n"
+    "LIGHT l1 0 0 0 0.9 0.9 0.9\n"
+    "BACK 1 1 1\nAMBIENT 0.2 0.2 0.2\nOUTPUT out.ppm\n";
+
+// The message of the SceneError that parsing text throws, or "" if it parses.
+std::string error_of(const std::string& text) {
+    try {
+        rt::parse_scene(text, "scene.txt");
+    } catch (const rt::SceneError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+bool contains(const std::string& text, const std::string& part) {
+    return text.find(part) != std::string::npos;
+}
+
+// text with one line (1-based) replaced, e.g. to make a single mistake.
+std::string replace_line(std::string text, int line, const std::string& replacement) {
+    std::size_t start = 0;
+    for (int i = 1; i < line; ++i) start = text.find('\n', start) + 1;
+    const std::size_t end = text.find('\n', start);
+    return text.replace(start, end - start, replacement);
+}
+
+std::string with_line(int line, const std::string& replacement) {
+    return replace_line(kMinimal, line, replacement);
+}
+
+}  // namespace
+
+TEST(reads_every_field) {
+    const rt::Scene s = rt::parse_scene(kMinimal, "scene.txt");
+    CHECK_EQ(s.near_plane, 1.0);
+    CHECK_EQ(s.left, -1.0);
+    CHECK_EQ(s.right, 1.0);
+    CHECK_EQ(s.bottom, -1.0);
+    CHECK_EQ(s.top, 1.0);
+    CHECK_EQ(s.columns, 4);
+    CHECK_EQ(s.rows, 3);
+    CHECK_EQ(s.spheres.size(), 1u);
+    const rt::SphereSpec& sp = s.spheres[0];
+    CHECK_EQ(sp.name, std::string("s1"));
+    CHECK_EQ(sp.centre.z, -10.0);
+    CHECK_EQ(sp.scale.y, 4.0);
+    CHECK_EQ(sp.colour.x, 0.5);
+    CHECK_EQ(sp.ka, 1.0);
+    CHECK_EQ(sp.kd, 1.0);
+    CHECK_EQ(sp.ks, 0.9);
+    CHECK_EQ(sp.kr, 0.0);
+    CHECK_EQ(sp.shininess, 50.0);
+    CHECK_EQ(sp.line, 7);
+    CHECK_EQ(s.lights.size(), 1u);
+    CHECK_EQ(s.lights[0].intensity.z, 0.9);
+    CHECK_EQ(s.background.y, 1.0);
+    CHECK_EQ(s.ambient.x, 0.2);
+    CHECK_EQ(s.output, std::string("out.ppm"));
+    CHECK_EQ(s.output_line, 11);
+}
+
+// testParsing.txt's layout: OUTPUT first, tabs and "space + tab" separators, blank
+// lines, keywords in another order, and a file ending in "\n\n".
+TEST(accepts_tabs_blank_lines_and_any_order) {
+    const std::string text =
+        "\nOUTPUT \ttestParsing.ppm\n\nLEFT\t\t-1\nRIGHT\t\t1\nBOTTOM\t-1\nTOP\t\t1\nNEAR \t\t1\n\n"
+        "AMBIENT\t0.2\t0.2\t0.2\nBACK \t\t1 \t1 \t1\n\nRES\t\t600 \t600\n\n"
+        "SPHERE\ts1\t0\t0\t-10\t2\t4\t2\t0.5\t0\t0\t1\t1\t0.9\t0\t50\n\n"
+        "LIGHT\t\tl1\t0\t0\t0\t0.9\t0.9\t0.9\n\n";
+    const rt::Scene s = rt::parse_scene(text, "testParsing.txt");
+    CHECK_EQ(s.output, std::string("testParsing.ppm"));
+    CHECK_EQ(s.near_plane, 1.0);
+    CHECK_EQ(s.columns, 600);
+    CHECK_EQ(s.spheres.size(), 1u);
+    CHECK_EQ(s.spheres[0].line, 15);
+    CHECK_EQ(s.lights.size(), 1u);
+}
+
+TEST(accepts_a_last_line_without_newline) {
+    std::string text = kMinimal;
+    text.pop_back();
+    CHECK_EQ(rt::parse_scene(text, "scene.txt").output, std::string("out.ppm"));
+}
+
+TEST(accepts_crlf_line_ends) {
+    std::string text;
+    for (const char c : std::string(kMinimal)) {
+        if (c == '\n') text += '\r';
+        text += c;
+    }
+    const rt::Scene s = rt::parse_scene(text, "scene.txt");
+    CHECK_EQ(s.output, std::string("out.ppm"));  // no stray CR in the name
+    CHECK_EQ(s.columns, 4);
+}
+
+TEST(accepts_every_decimal_form) {
+    const rt::Scene s =
+        rt::parse_scene(with_line(7, "SPHERE s -4 .5 +2 1e-3 2.5E+1 7. 0 0 0 0 0 0 0 10.5"), "x");
+    CHECK_EQ(s.spheres[0].centre.x, -4.0);
+    CHECK_EQ(s.spheres[0].centre.y, 0.5);
+    CHECK_EQ(s.spheres[0].centre.z, 2.0);
+    CHECK_EQ(s.spheres[0].scale.x, 0.001);
+    CHECK_EQ(s.spheres[0].scale.y, 25.0);
+    CHECK_EQ(s.spheres[0].scale.z, 7.0);
+    CHECK_EQ(s.spheres[0].shininess, 10.5);
+}
+
+TEST(spheres_and_lights_are_optional_and_unlimited) {
+    const rt::Scene empty = rt::parse_scene(replace_line(with_line(7, ""), 8, ""), "x");
+    CHECK_EQ(empty.spheres.size(), 0u);
+    CHECK_EQ(empty.lights.size(), 0u);
+    std::string many = kMinimal;
+    for (int i = 0; i < 40; ++i) many += "SPHERE s 0 0 -5 1 1 1 1 1 1 1 1 1 0 1\nLIGHT l 0 0 0 1 1 1\n";
+    const rt::Scene big = rt::parse_scene(many, "x");
+    CHECK_EQ(big.spheres.size(), 41u);
+    CHECK_EQ(big.lights.size(), 41u);
+}
+
+TEST(a_short_sphere_line_is_reported_on_its_own_line) {
+    const std::string e = error_of(with_line(7, "SPHERE s1 0 0 -10 2 4 2 0.5 0 0 1 1 0.9 0"));
+    CHECK(contains(e, "scene.txt:7: error: SPHERE has 14 fields, expected 15"));
+}
+
+TEST(reports_an_unknown_keyword) {
+    const std::string e = error_of(with_line(8, "LAMP l1 0 0 0 1 1 1"));
+    CHECK(contains(e, "scene.txt:8: error: unknown keyword 'LAMP'"));
+}
+
+TEST(reports_malformed_and_non_finite_numbers) {
+    CHECK(
+        contains(error_of(with_line(1, "NEAR 0.5x")), "scene.txt:1: error: NEAR <n> is '0.5x', expected a"));
+    CHECK(contains(error_of(with_line(1, "NEAR nan")), "scene.txt:1:"));
+    CHECK(contains(error_of(with_line(1, "NEAR inf")), "scene.txt:1:"));
+    CHECK(contains(error_of(with_line(1, "NEAR 1e999")), "scene.txt:1:"));
+    CHECK(contains(error_of(with_line(1, "NEAR 0x10")), "scene.txt:1:"));
+    CHECK(contains(error_of(with_line(1, "NEAR .")), "scene.txt:1:"));
+    CHECK(contains(error_of(with_line(1, "NEAR 1e")), "scene.txt:1:"));
+}
+
+TEST(reports_bad_resolutions) {
+    CHECK(contains(error_of(with_line(6, "RES 0 3")),
+                   "scene.txt:6: error: RES <x> is '0', expected a positive"));
+    CHECK(contains(error_of(with_line(6, "RES 4 -3")), "scene.txt:6:"));
+    CHECK(contains(error_of(with_line(6, "RES 4.5 3")), "scene.txt:6:"));
+    CHECK(contains(error_of(with_line(6, "RES 99999999999999999999999 3")), "scene.txt:6:"));
+    CHECK(contains(error_of(with_line(6, "RES 100000 100000")),
+                   "scene.txt:6: error: RES 100000 100000 is too large"));
+}
+
+TEST(reports_missing_and_repeated_keywords) {
+    CHECK(contains(error_of(with_line(11, "")), "scene.txt: error: no OUTPUT line, expected exactly one"));
+    CHECK(contains(error_of(with_line(11, "NEAR 2")),
+                   "scene.txt:11: error: a second NEAR (the first is on line 1)"));
+}
+
+TEST(reports_meaningless_values) {
+    CHECK(contains(error_of(with_line(1, "NEAR 0")),
+                   "scene.txt:1: error: NEAR is 0, expected a distance greater"));
+    CHECK(contains(error_of(with_line(1, "NEAR -1")), "scene.txt:1:"));
+    CHECK(contains(error_of(with_line(3, "RIGHT -1")),
+                   "scene.txt:3: error: LEFT -1 and RIGHT -1, expected LEFT < RIGHT"));
+    CHECK(contains(error_of(with_line(5, "TOP -2")), "scene.txt:5: error: BOTTOM -1 and TOP -2"));
+    CHECK(contains(error_of(with_line(7, "SPHERE s1 0 0 -10 2 0 2 0.5 0 0 1 1 0.9 0 50")),
+                   "scene.txt:7: error: SPHERE 's1' has a zero scale"));
+    CHECK(
+        contains(error_of(with_line(11, "OUTPUT")), "scene.txt:11: error: OUTPUT has 0 fields, expected 1"));
+}
+
+TEST(values_outside_0_1_are_kept_as_given) {
+    const rt::Scene s = rt::parse_scene(with_line(8, "LIGHT l1 0 0 0 2.5 -1 7"), "x");
+    CHECK_EQ(s.lights[0].intensity.x, 2.5);
+    CHECK_EQ(s.lights[0].intensity.y, -1.0);
+}

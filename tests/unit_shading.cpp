@@ -1,2 +1,150 @@
+// Each term of the illumination model (SPEC section 5) against hand-computed values,
+// and the conversion of a colour to bytes (section 6).
+#include <cmath>
+#include <limits>
+
 #include "check.h"
-TEST(placeholder) { CHECK(true); }
+#include "raytracer/image.h"
+#include "raytracer/tracer.h"
+
+namespace {
+
+using V = rt::Vec3<double>;
+
+rt::SphereSpec sphere(V centre, double radius, V colour, double ka, double kd, double ks, double kr,
+                      double n) {
+    rt::SphereSpec s;
+    s.centre = centre;
+    s.scale = {radius, radius, radius};
+    s.colour = colour;
+    s.ka = ka;
+    s.kd = kd;
+    s.ks = ks;
+    s.kr = kr;
+    s.shininess = n;
+    return s;
+}
+
+rt::Scene scene(V ambient, V background = {0.25, 0.5, 0.75}) {
+    rt::Scene s;
+    s.ambient = ambient;
+    s.background = background;
+    return s;
+}
+
+void light(rt::Scene& s, V position, V intensity) { s.lights.push_back({"l", position, intensity, 0}); }
+
+V trace(const rt::Scene& s, V direction) { return rt::Tracer<double>(s).trace_eye_ray(direction); }
+
+}  // namespace
+
+TEST(eye_rays_that_miss_return_the_background) {
+    const V c = trace(scene({1, 1, 1}), {0, 0, -1});
+    CHECK_EQ(c.x, 0.25);
+    CHECK_EQ(c.y, 0.5);
+    CHECK_EQ(c.z, 0.75);
+}
+
+TEST(ambient_is_ka_times_ia_times_colour) {
+    rt::Scene s = scene({0.75, 0.5, 1});
+    s.spheres.push_back(sphere({0, 0, -5}, 1, {0.5, 1, 0.25}, 0.8, 0, 0, 0, 1));
+    const V c = trace(s, {0, 0, -1});
+    CHECK_NEAR(c.x, 0.8 * 0.75 * 0.5, 1e-15);
+    CHECK_NEAR(c.y, 0.8 * 0.5 * 1, 1e-15);
+    CHECK_NEAR(c.z, 0.8 * 1 * 0.25, 1e-15);
+}
+
+TEST(diffuse_follows_the_cosine_to_the_light) {
+    rt::Scene s = scene({0, 0, 0});
+    s.spheres.push_back(sphere({0, 0, -5}, 1, {0.5, 1, 0.25}, 0, 0.9, 0, 0, 1));
+    light(s, {0, 0, 0}, {1, 0.5, 1});
+    V c = trace(s, {0, 0, -1});  // hits (0,0,-4) facing the light: N.L = 1
+    CHECK_NEAR(c.x, 0.9 * 1 * 0.5, 1e-15);
+    CHECK_NEAR(c.y, 0.9 * 0.5 * 1, 1e-15);
+    // A light 60 degrees off the normal at (0,0,-4): N.L = cos 60 = 0.5.
+    s.lights[0].position = {std::sqrt(3.0), 0, -3};
+    c = trace(s, {0, 0, -1});
+    CHECK_NEAR(c.x, 0.9 * 1 * 0.5 * 0.5, 1e-12);
+    // A light behind the surface gives nothing (and no specular either).
+    s.lights[0].position = {0, 0, -20};
+    s.spheres[0].ks = 1;
+    c = trace(s, {0, 0, -1});
+    CHECK_EQ(c.x, 0.0);
+}
+
+TEST(specular_is_not_tinted_by_the_object_colour) {
+    rt::Scene s = scene({0, 0, 0});
+    s.spheres.push_back(sphere({0, 0, -5}, 1, {1, 0, 0}, 0, 0, 0.5, 0, 10));
+    light(s, {0, 0, 0}, {1, 1, 1});
+    const V c = trace(s, {0, 0, -1});  // R = V: (R.V)^n = 1
+    CHECK_NEAR(c.x, 0.5, 1e-15);
+    CHECK_NEAR(c.y, 0.5, 1e-15);
+}
+
+TEST(specular_falls_off_as_r_dot_v_to_the_n) {
+    // Light at 60 degrees from the normal, viewer along the normal: R.V = cos 60 = 0.5.
+    rt::Scene s = scene({0, 0, 0});
+    s.spheres.push_back(sphere({0, 0, -5}, 1, {1, 1, 1}, 0, 0, 1, 0, 3));
+    light(s, {std::sqrt(3.0), 0, -3}, {1, 1, 1});
+    const V c = trace(s, {0, 0, -1});
+    CHECK_NEAR(c.y, 0.125, 1e-12);
+}
+
+TEST(a_blocked_light_leaves_only_ambient) {
+    rt::Scene s = scene({0.5, 0.5, 0.5});
+    s.spheres.push_back(sphere({0, 0, -10}, 1, {1, 1, 1}, 1, 1, 1, 0, 1));
+    s.spheres.push_back(sphere({0, 5, -9}, 0.5, {1, 1, 1}, 1, 1, 1, 0, 1));  // between point and light
+    light(s, {0, 10, -8}, {1, 1, 1});
+    const V c = trace(s, {0, 0.05, -1});
+    CHECK_NEAR(c.x, 0.5, 1e-15);
+}
+
+TEST(reflections_add_kr_times_what_the_mirror_sees) {
+    // A mirror in front, a sphere behind the eye that only the mirror shows.
+    rt::Scene s = scene({0.5, 0.5, 0.5});
+    s.spheres.push_back(sphere({0, 0, -5}, 1, {0, 0, 0}, 0, 0, 0, 0.5, 1));
+    s.spheres.push_back(sphere({0, 0, 5}, 1, {1, 0.5, 0}, 1, 0, 0, 0, 1));
+    const V c = trace(s, {0, 0, -1});
+    CHECK_NEAR(c.x, 0.5 * 0.5 * 1, 1e-15);
+    CHECK_NEAR(c.y, 0.5 * 0.5 * 0.5, 1e-15);
+}
+
+TEST(reflected_rays_that_miss_return_black) {
+    rt::Scene s = scene({0, 0, 0}, {1, 1, 1});
+    s.spheres.push_back(sphere({0, 0, -5}, 1, {0, 0, 0}, 0, 0, 0, 1, 1));
+    const V c = trace(s, {0, 0, -1});
+    CHECK_EQ(c.x, 0.0);
+}
+
+TEST(at_most_three_reflection_rays_per_pixel) {
+    // The eye inside a mirror sphere: every bounce hits the shell again and adds its
+    // ambient term a, weighted by 0.5 per bounce: a (1 + 1/2 + 1/4 + 1/8), no 1/16.
+    rt::Scene s = scene({0.4, 0.4, 0.4});
+    s.spheres.push_back(sphere({0, 0, 0}, 10, {1, 1, 1}, 1, 0, 0, 0.5, 1));
+    const V c = trace(s, {0, 0, -1});
+    CHECK_NEAR(c.x, 0.4 * 1.875, 1e-15);
+}
+
+TEST(a_light_inside_an_ellipsoid_lights_only_its_inside) {
+    // testIllum: a light at the centre of a sphere that the near plane cuts open.
+    rt::Scene s = scene({0, 0, 0});
+    s.spheres.push_back(sphere({0, 0, -1}, 0.5, {1, 1, 1}, 0, 1, 0, 0, 1));
+    s.spheres.push_back(sphere({0, 0, -10}, 5, {1, 1, 1}, 0, 1, 0, 0, 1));
+    light(s, {0, 0, -1}, {1, 1, 1});
+    CHECK_NEAR(trace(s, {0, 0, -1}).x, 1.0, 1e-12);    // the inner surface, facing the light
+    CHECK_EQ(trace(s, {0.05, 0.05, -1}).x > 0, true);  // still inside the cut-open shell
+    CHECK_EQ(trace(s, {0.55, 0, -1}).x, 0.0);          // the big sphere: the shell shades it
+    s.spheres.erase(s.spheres.begin());
+    CHECK(trace(s, {0.55, 0, -1}).x > 0);  // without the shell it is lit
+}
+
+TEST(colours_are_clamped_then_truncated) {
+    CHECK_EQ(int{rt::to_byte(0.25)}, 63);
+    CHECK_EQ(int{rt::to_byte(0.5)}, 127);
+    CHECK_EQ(int{rt::to_byte(0.375)}, 95);
+    CHECK_EQ(int{rt::to_byte(1.0)}, 255);
+    CHECK_EQ(int{rt::to_byte(7.5)}, 255);
+    CHECK_EQ(int{rt::to_byte(-0.1)}, 0);
+    CHECK_EQ(int{rt::to_byte(std::numeric_limits<double>::quiet_NaN())}, 0);
+    CHECK_EQ(int{rt::to_byte(0.9999999f)}, 254);
+}
