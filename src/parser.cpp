@@ -9,7 +9,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <optional>
 #include <sstream>
 #include <vector>
@@ -338,7 +337,16 @@ Scene load_scene(const std::string& path) {
         throw SceneError(path, 0, "does not exist, expected a scene file");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw SceneError(path, 0, "cannot be opened for reading, expected a readable scene file");
-    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::string text;
+    std::vector<char> buffer(1 << 16);
+    while (in.read(buffer.data(), static_cast<std::streamsize>(buffer.size())) || in.gcount() > 0) {
+        text.append(buffer.data(), static_cast<std::size_t>(in.gcount()));
+        if (text.size() > kMaxSceneFileBytes) {
+            throw SceneError(
+                path, 0,
+                "is larger than " + std::to_string(kMaxSceneFileBytes >> 20) + " MiB, expected a scene file");
+        }
+    }
     if (in.bad()) throw SceneError(path, 0, "could not be read, expected a readable scene file");
     if (text.find_first_not_of(" \t\r\n\v\f") == std::string::npos)
         throw SceneError(path, 0, "is empty, expected a scene file");

@@ -215,6 +215,15 @@ int main(int argc, char** argv) {
                                binary_without_nul(4096));
     run_case(raytracer, scratch, {"binary-with-nul", {binary_nul}, {"", 1, 1, "a NUL byte"}, binary_nul});
 
+#ifndef _WIN32
+    // An endless file must be refused after a bounded read, not read into memory forever.
+    run_case(raytracer, scratch,
+             {"endless-file",
+              {"/dev/zero"},
+              {"", 1, 0, "is larger than 64 MiB, expected a scene file"},
+              "/dev/zero"});
+#endif
+
     // Permissions: root may read and write anything, so these say nothing when run as
     // root (as CI does); the same refusals are covered as root by output_under_a_file
     // and output_missing_folder in the corpus.
