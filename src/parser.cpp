@@ -267,7 +267,7 @@ private:
             s.kr = v[12];
             s.shininess = v[13];
             s.line = line;
-            for (int axis = 0; axis < 3; ++axis) {
+            for (std::size_t axis = 0; axis < 3; ++axis) {
                 if (v[3 + axis] == 0) {
                     fail(line, "SPHERE " + shown(s.name) + " <scl " + "xyz"[axis] + "> is " +
                                    shown(f.raw[4 + axis]) + ", expected a non-zero scale");
