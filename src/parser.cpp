@@ -350,6 +350,9 @@ Scene load_scene(const std::string& path) {
     if (in.bad()) throw SceneError(path, 0, "could not be read, expected a readable scene file");
     if (text.find_first_not_of(" \t\r\n\v\f") == std::string::npos)
         throw SceneError(path, 0, "is empty, expected a scene file");
+    // Windows editors may save UTF-16, whose ASCII letters come with NUL bytes between.
+    if (text.rfind("\xFF\xFE", 0) == 0 || text.rfind("\xFE\xFF", 0) == 0)
+        throw SceneError(path, 0, "is UTF-16 text, expected ASCII or UTF-8 text");
     // A NUL byte never occurs in a text file; say so rather than "unknown keyword".
     if (const std::size_t nul = text.find('\0'); nul != std::string::npos) {
         const int line =
