@@ -9,7 +9,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <optional>
 #include <sstream>
 #include <vector>
@@ -83,8 +82,8 @@ std::optional<long long> to_integer(std::string_view token) {
     long long value = 0;
     for (; i < token.size(); ++i) {
         if (!is_digit(token[i])) return std::nullopt;
-        value = value * 10 + (token[i] - '0');
-        if (value > kMaxImagePixels) return value;  // big enough to be refused; stop before overflow
+        // Saturate rather than overflow: anything this big is refused as too large anyway.
+        value = std::min(value * 10 + (token[i] - '0'), kMaxImagePixels + 1);
     }
     return value;
 }
@@ -153,6 +152,7 @@ struct Fields {
     std::vector<std::string_view> names;
     std::vector<double> numbers;
     std::vector<long long> counts;
+    std::vector<std::string_view> raw;  // every field as written, for messages
 };
 
 class SceneParser {
@@ -165,9 +165,14 @@ public:
         int line_number = 0;
         while (!text.empty()) {
             ++line_number;
-            const std::size_t end = text.find('\n');
+            // A line ends at LF, CR LF, or a lone CR (old Mac files): each counts as one line.
+            const std::size_t end = text.find_first_of("\r\n");
             statement(split(text.substr(0, end)), line_number);
-            text.remove_prefix(end == std::string_view::npos ? text.size() : end + 1);
+            std::size_t next = end == std::string_view::npos ? text.size() : end + 1;
+            if (end != std::string_view::npos && text[end] == '\r' && next < text.size() &&
+                text[next] == '\n')
+                ++next;
+            text.remove_prefix(next);
         }
         check_complete();
         return scene_;
@@ -204,6 +209,7 @@ private:
         Fields fields;
         for (std::size_t i = 0; i < wanted; ++i) {
             const std::string_view token = tokens[i + 1];
+            fields.raw.push_back(token);
             const std::string what =
                 std::string(found->keyword) + " <" + found->field_names[i] + "> is " + shown(token);
             switch (found->field_kinds[i]) {
@@ -261,8 +267,12 @@ private:
             s.kr = v[12];
             s.shininess = v[13];
             s.line = line;
-            if (s.scale.x == 0 || s.scale.y == 0 || s.scale.z == 0)
-                fail(line, "SPHERE " + shown(s.name) + " has a zero scale, expected non-zero scales");
+            for (std::size_t axis = 0; axis < 3; ++axis) {
+                if (v[3 + axis] == 0) {
+                    fail(line, "SPHERE " + shown(s.name) + " <scl " + "xyz"[axis] + "> is " +
+                                   shown(f.raw[4 + axis]) + ", expected a non-zero scale");
+                }
+            }
             scene_.spheres.push_back(std::move(s));
         } else if (keyword == "LIGHT") {
             scene_.lights.push_back({std::string(f.names[0]), {v[0], v[1], v[2]}, {v[3], v[4], v[5]}, line});
@@ -323,12 +333,26 @@ Scene load_scene(const std::string& path) {
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec))
         throw SceneError(path, 0, "is a directory, expected a scene file");
+    if (!std::filesystem::exists(path, ec))
+        throw SceneError(path, 0, "does not exist, expected a scene file");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw SceneError(path, 0, "cannot be opened for reading, expected a readable scene file");
-    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::string text;
+    std::vector<char> buffer(1 << 16);
+    while (in.read(buffer.data(), static_cast<std::streamsize>(buffer.size())) || in.gcount() > 0) {
+        text.append(buffer.data(), static_cast<std::size_t>(in.gcount()));
+        if (text.size() > kMaxSceneFileBytes) {
+            throw SceneError(
+                path, 0,
+                "is larger than " + std::to_string(kMaxSceneFileBytes >> 20) + " MiB, expected a scene file");
+        }
+    }
     if (in.bad()) throw SceneError(path, 0, "could not be read, expected a readable scene file");
     if (text.find_first_not_of(" \t\r\n\v\f") == std::string::npos)
         throw SceneError(path, 0, "is empty, expected a scene file");
+    // Windows editors may save UTF-16, whose ASCII letters come with NUL bytes between.
+    if (text.rfind("\xFF\xFE", 0) == 0 || text.rfind("\xFE\xFF", 0) == 0)
+        throw SceneError(path, 0, "is UTF-16 text, expected ASCII or UTF-8 text");
     // A NUL byte never occurs in a text file; say so rather than "unknown keyword".
     if (const std::size_t nul = text.find('\0'); nul != std::string::npos) {
         const int line =

@@ -49,30 +49,53 @@ fs::path temporary_name_for(const fs::path& target) {
     return name;
 }
 
+// Why a file could not be created at target, as precisely as the file system tells.
+std::string cannot_create(const std::string& name, const fs::path& target) {
+    std::error_code ec;
+    const fs::path folder = target.has_parent_path() ? target.parent_path() : fs::path(".");
+    if (!fs::exists(folder, ec))
+        return "'" + name + "' cannot be created: its folder '" + folder.u8string() + "' does not exist";
+    if (!fs::is_directory(folder, ec))
+        return "'" + name + "' cannot be created: '" + folder.u8string() + "' is not a folder";
+    return "'" + name + "' cannot be created: its folder is not writable";
+}
+
+// An existing folder of the target's name cannot be replaced by the image.
+std::string check_target(const char* file_name, const fs::path& target) {
+    std::error_code ec;
+    if (fs::is_directory(target, ec)) return "'" + std::string(file_name) + "' is a folder";
+    return {};
+}
+
 template <typename WriteBody>
 std::string save_atomically(const char* file_name, WriteBody write_body) {
     if (file_name == nullptr || *file_name == '\0') return "no file name given";
-    const fs::path target = fs::u8path(file_name);
-    const fs::path temporary = temporary_name_for(target);
-    {
-        std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-        if (!out)
-            return "'" + std::string(file_name) + "' cannot be created (is its folder missing or read-only?)";
-        write_body(out);
-        out.close();
-        if (!out) {
+    // u8path may throw on names that are not valid UTF-8 (on Windows).
+    try {
+        const fs::path target = fs::u8path(file_name);
+        if (std::string error = check_target(file_name, target); !error.empty()) return error;
+        const fs::path temporary = temporary_name_for(target);
+        {
+            std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+            if (!out) return cannot_create(file_name, target);
+            write_body(out);
+            out.close();
+            if (!out) {
+                std::error_code ignored;
+                fs::remove(temporary, ignored);
+                return "'" + std::string(file_name) + "' could not be written in full (is the disk full?)";
+            }
+        }
+        std::string error;
+        if (!replace_file(temporary, target, error)) {
             std::error_code ignored;
             fs::remove(temporary, ignored);
-            return "'" + std::string(file_name) + "' could not be written in full (is the disk full?)";
+            return "'" + std::string(file_name) + "' cannot be replaced: " + error;
         }
+        return {};
+    } catch (const std::exception& e) {
+        return "'" + std::string(file_name) + "' is not a usable file name: " + e.what();
     }
-    std::string error;
-    if (!replace_file(temporary, target, error)) {
-        std::error_code ignored;
-        fs::remove(temporary, ignored);
-        return "'" + std::string(file_name) + "' cannot be replaced: " + error;
-    }
-    return {};
 }
 
 }  // namespace
@@ -95,6 +118,24 @@ std::string save_imageP3(int width, int height, const char* file_name, const uns
             out << '\n';
         }
     });
+}
+
+std::string check_writable(const char* file_name) {
+    if (file_name == nullptr || *file_name == '\0') return "no file name given";
+    try {
+        const fs::path target = fs::u8path(file_name);
+        if (std::string error = check_target(file_name, target); !error.empty()) return error;
+        // Creating (and removing) a file beside the target is the only sure test:
+        // permissions, read-only media and ACLs all have their say.
+        const fs::path temporary = temporary_name_for(target);
+        if (!std::ofstream(temporary, std::ios::binary | std::ios::trunc))
+            return cannot_create(file_name, target);
+        std::error_code ignored;
+        fs::remove(temporary, ignored);
+        return {};
+    } catch (const std::exception& e) {
+        return "'" + std::string(file_name) + "' is not a usable file name: " + e.what();
+    }
 }
 
 bool read_ppm(const std::string& file_name, Image& image, std::string& error) {

@@ -2,6 +2,7 @@
 // of SPEC section 2 and throws SceneError with the file and line of the first mistake.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <string_view>
 
@@ -14,6 +15,10 @@ namespace rt {
 // columns*rows nor any per-row arithmetic can overflow.
 inline constexpr long long kMaxImagePixels = 100'000'000;
 inline constexpr int kMaxImageSide = 100'000;
+
+// A scene file is a few KB; one larger than this is not a scene file (or is an endless
+// one such as /dev/zero) and is refused after reading this much, not read to the end.
+inline constexpr std::size_t kMaxSceneFileBytes = std::size_t{64} << 20;
 
 // Parses the text of a scene file; file_name is used only in messages.
 Scene parse_scene(std::string_view text, const std::string& file_name);
