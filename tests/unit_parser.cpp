@@ -173,7 +173,7 @@ TEST(reports_meaningless_values) {
                    "scene.txt:3: error: LEFT -1 and RIGHT -1, expected LEFT < RIGHT"));
     CHECK(contains(error_of(with_line(5, "TOP -2")), "scene.txt:5: error: BOTTOM -1 and TOP -2"));
     CHECK(contains(error_of(with_line(7, "SPHERE s1 0 0 -10 2 0 2 0.5 0 0 1 1 0.9 0 50")),
-                   "scene.txt:7: error: SPHERE 's1' has a zero scale"));
+                   "scene.txt:7: error: SPHERE 's1' <scl y> is '0', expected a non-zero scale"));
     CHECK(
         contains(error_of(with_line(11, "OUTPUT")), "scene.txt:11: error: OUTPUT has 0 fields, expected 1"));
 }
