@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "raytracer/scene.h"
+#include "raytracer/scene_precision.h"
 #include "raytracer/vec3.h"
 
 namespace rt {
@@ -34,23 +35,6 @@ Ellipsoid<Real> make_ellipsoid(const SphereSpec& s) {
             static_cast<Real>(s.ks),
             static_cast<Real>(s.kr),
             static_cast<Real>(s.shininess)};
-}
-
-// The scene is parsed into double whatever precision renders it (SPEC: parsing stays
-// single), so every number of the scene already carries a relative rounding error of
-// up to DBL_EPSILON/2 from its decimal text. Decisions that the decimal scene puts exactly
-// on a boundary (a tangent ray, a hit exactly on the near plane) are therefore settled
-// with a tolerance of the scene's precision, not of the working precision: then the
-// double and the long double render make the same decision on such "designed" cases,
-// and float, whose own epsilon is larger, uses its own. (This is Higham's backward-error
-// view: a result is as good as the data if it is exact for data perturbed within their
-// own uncertainty; N. J. Higham, Accuracy and Stability of Numerical Algorithms, 2nd
-// ed., SIAM 2002, section 1.5.)
-template <typename Real>
-constexpr Real scene_epsilon() {
-    return std::numeric_limits<Real>::epsilon() > Real(std::numeric_limits<double>::epsilon())
-               ? std::numeric_limits<Real>::epsilon()
-               : Real(std::numeric_limits<double>::epsilon());
 }
 
 // Both ray parameters where the ray meets the surface, near <= far; hit is false when

@@ -55,7 +55,7 @@ public:
     // rays through the rim where the near plane cuts an ellipsoid: keyIllum's pixels
     // (240,345), (360,345), (345,240), (345,360) have their far root at exactly t = 1
     // (a 3-4-5 triangle), which double rounding puts 2 ulps above 1. The ulps are those
-    // of the scene's double numbers, whatever Real is (scene_epsilon in ellipsoid.h), so
+    // of the scene's double numbers, whatever Real is (scene_precision.h), so
     // that long double decides these pixels as double does.
     Hit nearest_hit(const V& origin, const V& direction, Real min_t) const {
         min_t *= Real(1) + Real(8) * scene_epsilon<Real>();
