@@ -111,7 +111,7 @@ inline std::string csv(const std::vector<Row>& rows) {
 // from the reference. Exact images (0%) sit on their own row at the bottom. Each point
 // has a tooltip (<title>) naming its scene.
 inline std::string svg(const std::vector<Row>& rows, const std::string& title) {
-    const double width = 760, height = 480, left = 70, right = 170, top = 40, bottom = 60;
+    const double width = 760, height = 490, left = 70, right = 170, top = 40, bottom = 80;
     const double plot_w = width - left - right, plot_h = height - top - bottom;
     double min_ms = 1e300, max_ms = 0;
     for (const Row& r : rows) {
@@ -142,7 +142,7 @@ inline std::string svg(const std::vector<Row>& rows, const std::string& title) {
     for (double e = x_lo; e <= x_hi; ++e) {
         const double x = x_of(std::pow(10.0, e));
         out << "<line x1=\"" << x << "\" y1=\"" << top << "\" x2=\"" << x << "\" y2=\"" << top + plot_h
-            << "\" stroke=\"#ddd\"/><text x=\"" << x << "\" y=\"" << height - 28
+            << "\" stroke=\"#ddd\"/><text x=\"" << x << "\" y=\"" << top + plot_h + 44
             << "\" text-anchor=\"middle\">" << fixed(std::pow(10.0, e), e < 0 ? int(-e) : 0) << "</text>\n";
     }
     for (double e = y_lo; e <= y_hi; ++e) {
