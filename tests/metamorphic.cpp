@@ -2,7 +2,10 @@
 // which hold without knowing the right image. Each runs over every hard case
 // (scenes/hard/) and every course scene (rendered at a third of its size to stay fast),
 // in double, the precision of raytracer.exe.
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
+#include <iostream>
 #include <string>
 #include <vector>
 

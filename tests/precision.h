@@ -3,7 +3,8 @@
 #pragma once
 
 #include <cmath>
-#include <cstdio>
+#include <cstddef>
+#include <limits>
 #include <string>
 
 #include "raytracer/image.h"
@@ -15,35 +16,23 @@ namespace precision {
 enum class Real { kFloat, kDouble, kLongDouble };
 
 inline const char* name_of(Real real) {
-    switch (real) {
-        case Real::kFloat:
-            return "float";
-        case Real::kDouble:
-            return "double";
-        case Real::kLongDouble:
-            return "long double";
-    }
-    return "?";
+    if (real == Real::kFloat) return "float";
+    if (real == Real::kDouble) return "double";
+    return "long double";
 }
 
 inline rt::Image render(const rt::Scene& scene, Real real) {
-    switch (real) {
-        case Real::kFloat:
-            return rt::render<float>(scene);
-        case Real::kDouble:
-            return rt::render<double>(scene);
-        case Real::kLongDouble:
-            return rt::render<long double>(scene);
-    }
-    return {};
+    if (real == Real::kFloat) return rt::render<float>(scene);
+    if (real == Real::kDouble) return rt::render<double>(scene);
+    return rt::render<long double>(scene);
 }
 
 // How far an image is from a reference of the same size.
 struct Error {
     long long differing_pixels = 0;  // pixels where any channel differs
     long long pixels = 0;
-    int largest_difference = 0;  // in levels, 0..255
-    double psnr = INFINITY;      // dB over all channels; infinite when equal
+    int largest_difference = 0;                             // in levels, 0..255
+    double psnr = std::numeric_limits<double>::infinity();  // dB over all channels; infinite when equal
 };
 
 inline Error error_of(const rt::Image& image, const rt::Image& reference) {
