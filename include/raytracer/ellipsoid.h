@@ -49,18 +49,19 @@ struct Roots {
 // a t^2 + 2 b t + c = 0 with a = d'.d', b = o'.d' (half the linear term), c = o'.o' - 1.
 //
 // Discriminant. b^2 - a c cancels catastrophically when the ellipsoid is far away or
-// thin (b^2 and a c are then huge and nearly equal; in float a sphere 1e4 radii away
-// is already lost). Instead it is computed from the vector l = o' - (b/a) d' from the
+// thin: b^2 and a c are then ~|o'|^2 and nearly equal, so their rounding error, an ulp
+// of |o'|^2, swamps a difference below 1 once |o'| passes ~1/sqrt(epsilon): ~4e3 radii
+// in float, ~7e7 in double. Instead it is computed from the vector l = o' - (b/a) d' from the
 // centre to the ray, perpendicular to it: b^2 - a c = a (1 - l.l), where 1 - l.l has no
 // cancellation except near tangency, where it is inherent (E. Haines, J. Guenther,
 // T. Akenine-Moller, "Precision Improvements for Ray/Sphere Intersection", Ray Tracing
-// Gems, Apress 2019, ch. 7, eq. 7.5-7.6). The absolute error of l is a few ulps of |o'|,
+// Gems, Apress 2019, ch. 7). The absolute error of l is a few ulps of |o'|,
 // the same as the rounding already in o' itself, so the result is the exact one for an
 // ellipsoid moved by a few ulps of its distance: backward stable.
 //
 // Roots. -b +- sqrt(disc) cancels for the root whose sign differs from -b; instead
 // q = -(b + sign(b) sqrt(disc)), t = q/a and t = c/q, both free of cancellation
-// (W. H. Press et al., Numerical Recipes, 3rd ed., section 5.6, eq. 5.6.4-5.6.5;
+// (W. H. Press et al., Numerical Recipes, 3rd ed., section 5.6;
 // D. Goldberg, "What Every Computer Scientist Should Know About Floating-Point
 // Arithmetic", ACM Computing Surveys 23(1), 1991, section 1.4).
 //
