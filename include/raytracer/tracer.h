@@ -54,9 +54,11 @@ public:
     // one at min_t is not visible (the hit must lie beyond it). This decides the eye
     // rays through the rim where the near plane cuts an ellipsoid: keyIllum's pixels
     // (240,345), (360,345), (345,240), (345,360) have their far root at exactly t = 1
-    // (a 3-4-5 triangle), which double rounding puts 2 ulps above 1.
+    // (a 3-4-5 triangle), which double rounding puts 2 ulps above 1. The ulps are those
+    // of the scene's double numbers, whatever Real is (scene_precision.h), so
+    // that long double decides these pixels as double does.
     Hit nearest_hit(const V& origin, const V& direction, Real min_t) const {
-        min_t *= Real(1) + Real(8) * std::numeric_limits<Real>::epsilon();
+        min_t *= Real(1) + Real(8) * scene_epsilon<Real>();
         Hit best;
         for (const Ellipsoid<Real>& e : ellipsoids_) {
             const Roots<Real> r = intersect(e, origin, direction);
