@@ -2,6 +2,7 @@
 // write never leaves a partial image nor clobbers an existing one.
 #include "raytracer/ppm.h"
 
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>

@@ -156,9 +156,8 @@ int main(int argc, char** argv) {
             std::string error;
             if (status != 0)
                 problem = "raytracer.exe failed (status " + std::to_string(status) + ")";
-            else if (!rt::read_ppm(output.string(), rendered, error))
-                problem = error;
-            else if (!rt::read_ppm(key_for(options.keys, scene).string(), key, error))
+            else if (!rt::read_ppm(output.string(), rendered, error) ||
+                     !rt::read_ppm(key_for(options.keys, scene).string(), key, error))
                 problem = error;
             else
                 diff = rt::compare_images(rendered, key);
