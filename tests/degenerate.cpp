@@ -80,7 +80,8 @@ void check_scene(const fs::path& raytracer, const fs::path& scratch, const fs::p
         rt::Image written;
         std::string error;
         const fs::path output = work / fs::u8path(scene.output);
-        expect(rt::read_ppm(output.string(), written, error), name, which + ": " + error);
+        expect(rt::read_ppm(output.string(), written, error), name,
+               std::string(which).append(": ").append(error));
         expect(same(image, written), name, which + " wrote another image than rt::render");
         std::error_code ignored;
         fs::remove(output, ignored);

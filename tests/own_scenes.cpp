@@ -30,8 +30,9 @@ TEST(every_scene_renders) {
         for (std::size_t i = 0; i < image.rgb.size(); i += 3)
             if (image.rgb[i] != back[0] || image.rgb[i + 1] != back[1] || image.rgb[i + 2] != back[2])
                 ++not_background;
-        if (!(not_background * 10 > scene.columns * scene.rows)) std::cerr << name << ": mostly background\n";
-        CHECK(not_background * 10 > scene.columns * scene.rows);  // at least 10% of the image
+        const long long pixels = static_cast<long long>(scene.columns) * scene.rows;
+        if (!(not_background * 10 > pixels)) std::cerr << name << ": mostly background\n";
+        CHECK(not_background * 10 > pixels);  // at least 10% of the image
         const bool same = rt::render<double>(scene).rgb == image.rgb;
         if (!same) std::cerr << name << ": two renders differ\n";
         CHECK(same);

@@ -1,5 +1,6 @@
 // Truncation to 8 bits (rt::to_byte, include/raytracer/image.h) in each precision: the
 // SPEC's examples, and decimal colours that land exactly on a step.
+#include <cmath>
 #include "check.h"
 #include "raytracer/image.h"
 
@@ -27,7 +28,7 @@ TEST(the_specs_examples_truncate) {
 // give the decimal scene's level, 153, not 152 in long double and 153 in double.
 TEST(decimal_steps_give_the_same_level_in_every_precision) {
     for (double v : {0.2, 0.4, 0.6, 0.8}) {
-        const int expected = static_cast<int>(v * 255 + 0.5);  // 51, 102, 153, 204
+        const int expected = static_cast<int>(std::lround(v * 255));  // 51, 102, 153, 204
         CHECK_EQ(byte<float>(v), expected);
         CHECK_EQ(byte<double>(v), expected);
         CHECK_EQ(byte<long double>(v), expected);

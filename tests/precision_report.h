@@ -139,13 +139,15 @@ inline std::string svg(const std::vector<Row>& rows, const std::string& title) {
         << "\" font-family=\"sans-serif\" font-size=\"12\">\n";
     out << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
     out << "<text x=\"" << left << "\" y=\"22\" font-size=\"15\">" << title << "</text>\n";
-    for (double e = x_lo; e <= x_hi; ++e) {
+    for (int decade = static_cast<int>(x_lo); decade <= static_cast<int>(x_hi); ++decade) {
+        const double e = decade;
         const double x = x_of(std::pow(10.0, e));
         out << "<line x1=\"" << x << "\" y1=\"" << top << "\" x2=\"" << x << "\" y2=\"" << top + plot_h
             << "\" stroke=\"#ddd\"/><text x=\"" << x << "\" y=\"" << top + plot_h + 44
             << "\" text-anchor=\"middle\">" << fixed(std::pow(10.0, e), e < 0 ? int(-e) : 0) << "</text>\n";
     }
-    for (double e = y_lo; e <= y_hi; ++e) {
+    for (int decade = static_cast<int>(y_lo); decade <= static_cast<int>(y_hi); ++decade) {
+        const double e = decade;
         const double y = top + plot_h * (y_hi - e) / (y_hi - y_lo);
         out << "<line x1=\"" << left << "\" y1=\"" << y << "\" x2=\"" << left + plot_w << "\" y2=\"" << y
             << "\" stroke=\"#ddd\"/><text x=\"" << left - 6 << "\" y=\"" << y + 4 << "\" text-anchor=\"end\">"

@@ -26,7 +26,7 @@ struct Result {
 
 inline std::string read_file(const fs::path& path) {
     std::ifstream in(path, std::ios::binary);
-    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 // Runs program with args (none may contain a double quote) in folder; the captured

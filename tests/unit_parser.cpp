@@ -51,7 +51,7 @@ TEST(reads_every_field) {
     CHECK_EQ(s.top, 1.0);
     CHECK_EQ(s.columns, 4);
     CHECK_EQ(s.rows, 3);
-    CHECK_EQ(s.spheres.size(), 1u);
+    CHECK_EQ(s.spheres.size(), 1U);
     const rt::SphereSpec& sp = s.spheres[0];
     CHECK_EQ(sp.name, std::string("s1"));
     CHECK_EQ(sp.centre.z, -10.0);
@@ -63,7 +63,7 @@ TEST(reads_every_field) {
     CHECK_EQ(sp.kr, 0.0);
     CHECK_EQ(sp.shininess, 50.0);
     CHECK_EQ(sp.line, 7);
-    CHECK_EQ(s.lights.size(), 1u);
+    CHECK_EQ(s.lights.size(), 1U);
     CHECK_EQ(s.lights[0].intensity.z, 0.9);
     CHECK_EQ(s.background.y, 1.0);
     CHECK_EQ(s.ambient.x, 0.2);
@@ -83,9 +83,9 @@ TEST(accepts_tabs_blank_lines_and_any_order) {
     CHECK_EQ(s.output, std::string("testParsing.ppm"));
     CHECK_EQ(s.near_plane, 1.0);
     CHECK_EQ(s.columns, 600);
-    CHECK_EQ(s.spheres.size(), 1u);
+    CHECK_EQ(s.spheres.size(), 1U);
     CHECK_EQ(s.spheres[0].line, 15);
-    CHECK_EQ(s.lights.size(), 1u);
+    CHECK_EQ(s.lights.size(), 1U);
 }
 
 TEST(accepts_a_last_line_without_newline) {
@@ -119,13 +119,13 @@ TEST(accepts_every_decimal_form) {
 
 TEST(spheres_and_lights_are_optional_and_unlimited) {
     const rt::Scene empty = rt::parse_scene(replace_line(with_line(7, ""), 8, ""), "x");
-    CHECK_EQ(empty.spheres.size(), 0u);
-    CHECK_EQ(empty.lights.size(), 0u);
+    CHECK_EQ(empty.spheres.size(), 0U);
+    CHECK_EQ(empty.lights.size(), 0U);
     std::string many = kMinimal;
     for (int i = 0; i < 40; ++i) many += "SPHERE s 0 0 -5 1 1 1 1 1 1 1 1 1 0 1\nLIGHT l 0 0 0 1 1 1\n";
     const rt::Scene big = rt::parse_scene(many, "x");
-    CHECK_EQ(big.spheres.size(), 41u);
-    CHECK_EQ(big.lights.size(), 41u);
+    CHECK_EQ(big.spheres.size(), 41U);
+    CHECK_EQ(big.lights.size(), 41U);
 }
 
 TEST(a_short_sphere_line_is_reported_on_its_own_line) {

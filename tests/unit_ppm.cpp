@@ -49,7 +49,7 @@ TEST(p6_is_header_then_rows_from_the_top) {
     const std::string expected =
         std::string("P6\n2 2\n255\n") + std::string(reinterpret_cast<const char*>(kPixels), 12);
     CHECK(contents(dir.file("a.ppm")) == expected);
-    CHECK_EQ(dir.entries(), 1u);  // no temporary file left behind
+    CHECK_EQ(dir.entries(), 1U);  // no temporary file left behind
 }
 
 TEST(p3_is_the_same_image_as_text) {
@@ -66,20 +66,20 @@ TEST(an_existing_image_is_replaced_whole) {
         old << std::string(5000, 'x');
     }
     CHECK_EQ(rt::save_imageP6(2, 2, dir.file("a.ppm").c_str(), kPixels), std::string());
-    CHECK_EQ(contents(dir.file("a.ppm")).size(), 11u + 12u);
-    CHECK_EQ(dir.entries(), 1u);
+    CHECK_EQ(contents(dir.file("a.ppm")).size(), 11U + 12U);
+    CHECK_EQ(dir.entries(), 1U);
 }
 
 TEST(an_unwritable_path_fails_and_leaves_nothing) {
     ScratchFolder dir;
     const std::string error = rt::save_imageP6(2, 2, dir.file("missing/a.ppm").c_str(), kPixels);
     CHECK(error.find("cannot be created") != std::string::npos);
-    CHECK_EQ(dir.entries(), 0u);
+    CHECK_EQ(dir.entries(), 0U);
     // A folder in the way of the target: the write fails and the folder survives.
     fs::create_directories(dir.path / "taken.ppm");
     CHECK(!rt::save_imageP6(2, 2, dir.file("taken.ppm").c_str(), kPixels).empty());
     CHECK(fs::is_directory(dir.path / "taken.ppm"));
-    CHECK_EQ(dir.entries(), 1u);
+    CHECK_EQ(dir.entries(), 1U);
 }
 
 TEST(read_ppm_reads_what_save_wrote) {

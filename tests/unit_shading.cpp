@@ -146,7 +146,7 @@ TEST(colours_are_clamped_then_truncated) {
     CHECK_EQ(int{rt::to_byte(7.5)}, 255);
     CHECK_EQ(int{rt::to_byte(-0.1)}, 0);
     CHECK_EQ(int{rt::to_byte(std::numeric_limits<double>::quiet_NaN())}, 0);
-    CHECK_EQ(int{rt::to_byte(0.999f)}, 254);
+    CHECK_EQ(int{rt::to_byte(0.999F)}, 254);
     // A level a few ulps of the scene's decimals below a step is that step: the scene's
     // 0.6 means 153 (0.6 * 255), whichever precision the product is taken in.
     CHECK_EQ(int{rt::to_byte(0.6)}, 153);

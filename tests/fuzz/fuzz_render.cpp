@@ -27,6 +27,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     scene.rows = std::min(scene.rows, 8);
     const rt::Image image = rt::render<double>(scene);
     fuzz::require(image.width == scene.columns && image.height == scene.rows);
-    fuzz::require(image.rgb.size() == static_cast<std::size_t>(scene.columns * scene.rows * 3));
+    fuzz::require(image.rgb.size() ==
+                  static_cast<std::size_t>(scene.columns) * static_cast<std::size_t>(scene.rows) * 3);
     return 0;
 }
