@@ -17,13 +17,14 @@ Image render(const Scene& scene) {
     const Real near_z = -static_cast<Real>(scene.near_plane);
     const Real columns = static_cast<Real>(scene.columns), rows = static_cast<Real>(scene.rows);
 
+    TraceScratch scratch = tracer.make_scratch();
     std::uint8_t* out = image.rgb.data();
     for (int r = 0; r < scene.rows; ++r) {
         // The top-left corner of the pixel, not its centre: the keys demand it.
         const Real y = top - (top - bottom) * static_cast<Real>(r) / rows;
         for (int c = 0; c < scene.columns; ++c) {
             const Real x = left + (right - left) * static_cast<Real>(c) / columns;
-            const Vec3<Real> colour = tracer.trace_eye_ray({x, y, near_z});
+            const Vec3<Real> colour = tracer.trace_eye_ray({x, y, near_z}, scratch);
             *out++ = to_byte(colour.x);
             *out++ = to_byte(colour.y);
             *out++ = to_byte(colour.z);

@@ -3,11 +3,14 @@
 #pragma once
 
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <vector>
 
 #include "raytracer/ellipsoid.h"
 #include "raytracer/scene.h"
+#include "raytracer/sphere_bounds.h"
 #include "raytracer/vec3.h"
 
 namespace rt {
@@ -24,6 +27,17 @@ struct PointLight {
     Vec3<Real> intensity;
 };
 
+// Per-thread working memory of a Tracer, so that no ray allocates: the candidate lists
+// of the bounding-sphere culling and, per light, the ellipsoid that last blocked it.
+template <typename Real>
+struct TraceScratch {
+    typename SphereBounds<Real>::OriginTerms origin;  // of the current hit point
+    std::vector<std::uint32_t> candidates;
+    std::vector<typename SphereBounds<Real>::C> cull;  // per ellipsoid: culled when not 0
+    std::vector<std::uint32_t> last_occluder;  // per light; kNone when none yet
+    static constexpr std::uint32_t kNone = 0xffffffffu;
+};
+
 template <typename Real>
 class Tracer {
 public:
@@ -34,13 +48,31 @@ public:
         ellipsoids_.reserve(scene.spheres.size());
         for (const SphereSpec& s : scene.spheres) ellipsoids_.push_back(make_ellipsoid<Real>(s));
         lights_.reserve(scene.lights.size());
-        for (const LightSpec& l : scene.lights)
+        std::vector<V> light_positions;
+        for (const LightSpec& l : scene.lights) {
             lights_.push_back({V::from(l.position), V::from(l.intensity)});
+            light_positions.push_back(V::from(l.position));
+        }
+        bounds_ = SphereBounds<Real>(ellipsoids_, light_positions);
+        bounds_.prepare(V{}, eye_terms_);  // every eye ray starts at the camera
+    }
+
+    // Working memory for one thread's rays.
+    TraceScratch<Real> make_scratch() const {
+        TraceScratch<Real> s;
+        s.candidates.resize(ellipsoids_.size());
+        s.cull.resize(ellipsoids_.size());
+        s.last_occluder.assign(lights_.size(), TraceScratch<Real>::kNone);
+        return s;
     }
 
     // The colour seen along an eye ray from the origin (the camera) in this direction.
+    V trace_eye_ray(const V& direction, TraceScratch<Real>& scratch) const {
+        return trace(V{}, eye_terms_, direction, Real(kEyeRayMinT), kMaxReflections, background_, scratch);
+    }
     V trace_eye_ray(const V& direction) const {
-        return trace(V{}, direction, Real(kEyeRayMinT), kMaxReflections, background_);
+        TraceScratch<Real> scratch = make_scratch();
+        return trace_eye_ray(direction, scratch);
     }
 
     // The nearest surface along origin + t direction with t > min_t.
@@ -55,10 +87,16 @@ public:
     // rays through the rim where the near plane cuts an ellipsoid: keyIllum's pixels
     // (240,345), (360,345), (345,240), (345,360) have their far root at exactly t = 1
     // (a 3-4-5 triangle), which double rounding puts 2 ulps above 1.
-    Hit nearest_hit(const V& origin, const V& direction, Real min_t) const {
+    // Only the ellipsoids the bounding spheres cannot rule out are intersected, in
+    // increasing order, so ties resolve exactly as in a loop over all of them.
+    Hit nearest_hit(const V& origin, const typename SphereBounds<Real>::OriginTerms& terms, const V& direction,
+                    Real min_t, TraceScratch<Real>& scratch) const {
         min_t *= Real(1) + Real(8) * std::numeric_limits<Real>::epsilon();
         Hit best;
-        for (const Ellipsoid<Real>& e : ellipsoids_) {
+        const std::size_t count =
+            bounds_.candidates(terms, direction, scratch.candidates.data(), scratch.cull.data());
+        for (std::size_t k = 0; k < count; ++k) {
+            const Ellipsoid<Real>& e = ellipsoids_[scratch.candidates[k]];
             const Roots<Real> r = intersect(e, origin, direction);
             if (!r.hit) continue;
             const bool inside = !(r.near > min_t);
@@ -67,26 +105,56 @@ public:
         }
         return best;
     }
+    Hit nearest_hit(const V& origin, const V& direction, Real min_t) const {
+        TraceScratch<Real> scratch = make_scratch();
+        bounds_.prepare(origin, scratch.origin);
+        return nearest_hit(origin, scratch.origin, direction, min_t, scratch);
+    }
 
     // A light is blocked when any ellipsoid lies on the segment from the point to it.
     // The direction is light - point, not normalised, so the light is at t = 1.
-    bool in_shadow(const V& point, const V& to_light) const {
-        const Real min_t = Real(kShadowRayMinT);
-        for (const Ellipsoid<Real>& e : ellipsoids_) {
-            const Roots<Real> r = intersect(e, point, to_light);
-            if (!r.hit) continue;
-            if ((r.near > min_t && r.near < 1) || (r.far > min_t && r.far < 1)) return true;
+    // The bounding-sphere terms of point must be in scratch.origin.
+    // Any blocker will do, so the search stops at the first; it tries first the one that
+    // blocked this light last on this thread (neighbouring pixels share their shadows).
+    bool in_shadow(const V& point, const V& to_light, std::size_t light_index, TraceScratch<Real>& scratch) const {
+        const std::uint32_t last = scratch.last_occluder[light_index];
+        if (last != TraceScratch<Real>::kNone && blocks(ellipsoids_[last], point, to_light)) return true;
+        const std::size_t count = bounds_.shadow_candidates(scratch.origin, to_light, light_index,
+                                                            scratch.candidates.data(), scratch.cull.data());
+        for (std::size_t k = 0; k < count; ++k) {
+            const std::uint32_t i = scratch.candidates[k];
+            if (i != last && blocks(ellipsoids_[i], point, to_light)) {
+                scratch.last_occluder[light_index] = i;
+                return true;
+            }
         }
         return false;
     }
 
+    // The same without culling or memory: every ellipsoid is tried.
+    bool in_shadow(const V& point, const V& to_light) const {
+        for (const Ellipsoid<Real>& e : ellipsoids_)
+            if (blocks(e, point, to_light)) return true;
+        return false;
+    }
+
 private:
-    V trace(const V& origin, const V& direction, Real min_t, int reflections_left, const V& miss) const {
-        const Hit hit = nearest_hit(origin, direction, min_t);
+    static bool blocks(const Ellipsoid<Real>& e, const V& point, const V& to_light) {
+        const Real min_t = Real(kShadowRayMinT);
+        const Roots<Real> r = intersect(e, point, to_light);
+        return r.hit && ((r.near > min_t && r.near < 1) || (r.far > min_t && r.far < 1));
+    }
+
+    V trace(const V& origin, const typename SphereBounds<Real>::OriginTerms& terms, const V& direction,
+            Real min_t, int reflections_left, const V& miss, TraceScratch<Real>& scratch) const {
+        const Hit hit = nearest_hit(origin, terms, direction, min_t, scratch);
         if (hit.ellipsoid == nullptr) return miss;
         const Ellipsoid<Real>& e = *hit.ellipsoid;
 
         const V point = origin + direction * hit.t;
+        // The point's sphere terms serve its shadow rays and its reflected ray; a deeper
+        // bounce overwrites them only after this level is done with them.
+        bounds_.prepare(point, scratch.origin);
         V normal = outward_normal(e, point);
         if (hit.inside) normal = -normal;  // seen from inside: face the viewer
         const V to_viewer = normalize(-direction);
@@ -94,9 +162,10 @@ private:
         // The terms are multiplied in the order the handout writes them: Ka*Ia*O, Kd*Ip*(N.L)*O
         // and Ks*Ip*(R.V)^n; a different order moves a few pixels across a truncation step.
         V colour = (ambient_ * e.ka) * e.colour;
-        for (const PointLight<Real>& light : lights_) {
+        for (std::size_t li = 0; li < lights_.size(); ++li) {
+            const PointLight<Real>& light = lights_[li];
             const V to_light = light.position - point;
-            if (in_shadow(point, to_light)) continue;
+            if (in_shadow(point, to_light, li, scratch)) continue;
             const V l = normalize(to_light);
             const Real n_dot_l = dot(normal, l);
             if (!(n_dot_l > 0)) continue;
@@ -112,13 +181,17 @@ private:
         if (e.kr > 0 && reflections_left > 0) {
             const V mirrored = direction - normal * (2 * dot(normal, direction));
             // A reflected ray that hits nothing returns black, unlike an eye ray.
-            colour += trace(point, mirrored, Real(kReflectedRayMinT), reflections_left - 1, V{}) * e.kr;
+            colour += trace(point, scratch.origin, mirrored, Real(kReflectedRayMinT), reflections_left - 1, V{},
+                            scratch) *
+                      e.kr;
         }
         return colour;
     }
 
     std::vector<Ellipsoid<Real>> ellipsoids_;
     std::vector<PointLight<Real>> lights_;
+    SphereBounds<Real> bounds_;
+    typename SphereBounds<Real>::OriginTerms eye_terms_;
     V ambient_;
     V background_;
 };
