@@ -26,6 +26,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "raytracer/direction_grid.h"
 #include "raytracer/ellipsoid.h"
 #include "raytracer/vec3.h"
 
@@ -46,7 +47,7 @@ public:
         // 1e2 (float) smallest scales, i.e. at most ~1e-10 (1e-5) against a gap of 1e-3.
         const C reach = std::numeric_limits<Real>::digits > 30 ? C(1e6) : C(1e2);
         const std::size_t n = ellipsoids.size();
-        cx_.resize(n), cy_.resize(n), cz_.resize(n), radius2_.resize(n), guard2_.resize(n);
+        cx_.resize(n), cy_.resize(n), cz_.resize(n), radius_.resize(n), radius2_.resize(n), guard2_.resize(n);
         for (std::size_t i = 0; i < n; ++i) {
             const Ellipsoid<Real>& e = ellipsoids[i];
             using std::abs;
@@ -54,6 +55,7 @@ public:
             const C radius = std::max({sx, sy, sz}) * (C(1) + kInflation);
             const C smallest = std::min({sx, sy, sz}) * reach;
             cx_[i] = C(e.centre.x), cy_[i] = C(e.centre.y), cz_[i] = C(e.centre.z);
+            radius_[i] = radius;
             radius2_[i] = radius * radius;
             guard2_[i] = smallest * smallest;
         }
@@ -62,13 +64,30 @@ public:
         light_outside_.resize(lights.size() * n);
         for (std::size_t l = 0; l < lights.size(); ++l)
             for (std::size_t i = 0; i < n; ++i) {
-                const C dx = C(lights[l].x) - cx_[i], dy = C(lights[l].y) - cy_[i], dz = C(lights[l].z) - cz_[i];
+                const C dx = C(lights[l].x) - cx_[i], dy = C(lights[l].y) - cy_[i],
+                        dz = C(lights[l].z) - cz_[i];
                 const C d2 = dx * dx + dy * dy + dz * dz;
                 light_outside_[l * n + i] = d2 > radius2_[i] && d2 <= guard2_[i] ? C(1) : C(0);
             }
     }
 
     std::size_t size() const { return cx_.size(); }
+
+    // The inflated bounding sphere of ellipsoid i.
+    BoundingSphere<C> sphere(std::size_t i) const { return {cx_[i], cy_[i], cz_[i], radius_[i]}; }
+
+    // Whether every ellipsoid is within the guard distance of every point of the box
+    // [lo, hi]: then rounding cannot approach the inflation for any ray starting there.
+    bool guards(const Vec3<C>& lo, const Vec3<C>& hi) const {
+        for (std::size_t i = 0; i < size(); ++i) {
+            using std::abs;
+            const C dx = std::max(abs(lo.x - cx_[i]), abs(hi.x - cx_[i]));
+            const C dy = std::max(abs(lo.y - cy_[i]), abs(hi.y - cy_[i]));
+            const C dz = std::max(abs(lo.z - cz_[i]), abs(hi.z - cz_[i]));
+            if (!(dx * dx + dy * dy + dz * dz <= guard2_[i])) return false;
+        }
+        return true;
+    }
 
     // The terms of every sphere that depend on the ray's origin alone: they are shared by
     // all rays from one point (every eye ray; a hit point's shadow and reflected rays).
@@ -145,7 +164,7 @@ private:
         return count;
     }
 
-    std::vector<C> cx_, cy_, cz_, radius2_, guard2_;
+    std::vector<C> cx_, cy_, cz_, radius_, radius2_, guard2_;
     std::vector<C> light_outside_;  // [light * size() + ellipsoid]
 };
 

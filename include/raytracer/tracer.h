@@ -2,12 +2,14 @@
 // that the same code renders in float, double and long double.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <vector>
 
+#include "raytracer/direction_grid.h"
 #include "raytracer/ellipsoid.h"
 #include "raytracer/scene.h"
 #include "raytracer/sphere_bounds.h"
@@ -34,7 +36,7 @@ struct TraceScratch {
     typename SphereBounds<Real>::OriginTerms origin;  // of the current hit point
     std::vector<std::uint32_t> candidates;
     std::vector<typename SphereBounds<Real>::C> cull;  // per ellipsoid: culled when not 0
-    std::vector<std::uint32_t> last_occluder;  // per light; kNone when none yet
+    std::vector<std::uint32_t> last_occluder;          // per light; kNone when none yet
     static constexpr std::uint32_t kNone = 0xffffffffu;
 };
 
@@ -55,6 +57,7 @@ public:
         }
         bounds_ = SphereBounds<Real>(ellipsoids_, light_positions);
         bounds_.prepare(V{}, eye_terms_);  // every eye ray starts at the camera
+        build_grids();
     }
 
     // Working memory for one thread's rays.
@@ -82,28 +85,13 @@ public:
         bool inside = false;  // the far root was taken: the ray sees the inner surface
     };
 
-    // A root computed within a few ulps of min_t cannot be told from one at min_t, and
-    // one at min_t is not visible (the hit must lie beyond it). This decides the eye
-    // rays through the rim where the near plane cuts an ellipsoid: keyIllum's pixels
-    // (240,345), (360,345), (345,240), (345,360) have their far root at exactly t = 1
-    // (a 3-4-5 triangle), which double rounding puts 2 ulps above 1.
-    // Only the ellipsoids the bounding spheres cannot rule out are intersected, in
-    // increasing order, so ties resolve exactly as in a loop over all of them.
-    Hit nearest_hit(const V& origin, const typename SphereBounds<Real>::OriginTerms& terms, const V& direction,
-                    Real min_t, TraceScratch<Real>& scratch) const {
-        min_t *= Real(1) + Real(8) * std::numeric_limits<Real>::epsilon();
-        Hit best;
-        const std::size_t count =
-            bounds_.candidates(terms, direction, scratch.candidates.data(), scratch.cull.data());
-        for (std::size_t k = 0; k < count; ++k) {
-            const Ellipsoid<Real>& e = ellipsoids_[scratch.candidates[k]];
-            const Roots<Real> r = intersect(e, origin, direction);
-            if (!r.hit) continue;
-            const bool inside = !(r.near > min_t);
-            const Real t = inside ? r.far : r.near;
-            if (t > min_t && (best.ellipsoid == nullptr || t < best.t)) best = {&e, t, inside};
-        }
-        return best;
+    // Only the ellipsoids the bounding spheres cannot rule out are intersected.
+    Hit nearest_hit(const V& origin, const typename SphereBounds<Real>::OriginTerms& terms,
+                    const V& direction, Real min_t, TraceScratch<Real>& scratch) const {
+        const std::uint32_t* first = scratch.candidates.data();
+        const std::uint32_t* last =
+            first + bounds_.candidates(terms, direction, scratch.candidates.data(), scratch.cull.data());
+        return closest(first, last, origin, direction, min_t);
     }
     Hit nearest_hit(const V& origin, const V& direction, Real min_t) const {
         TraceScratch<Real> scratch = make_scratch();
@@ -113,16 +101,26 @@ public:
 
     // A light is blocked when any ellipsoid lies on the segment from the point to it.
     // The direction is light - point, not normalised, so the light is at t = 1.
-    // The bounding-sphere terms of point must be in scratch.origin.
     // Any blocker will do, so the search stops at the first; it tries first the one that
     // blocked this light last on this thread (neighbouring pixels share their shadows).
-    bool in_shadow(const V& point, const V& to_light, std::size_t light_index, TraceScratch<Real>& scratch) const {
+    bool in_shadow(const V& point, const V& to_light, std::size_t light_index,
+                   TraceScratch<Real>& scratch) const {
         const std::uint32_t last = scratch.last_occluder[light_index];
         if (last != TraceScratch<Real>::kNone && blocks(ellipsoids_[last], point, to_light)) return true;
-        const std::size_t count = bounds_.shadow_candidates(scratch.origin, to_light, light_index,
-                                                            scratch.candidates.data(), scratch.cull.data());
-        for (std::size_t k = 0; k < count; ++k) {
-            const std::uint32_t i = scratch.candidates[k];
+        const std::uint32_t* first;
+        const std::uint32_t* end;
+        if (use_grids_) {
+            // The light buffer: the ellipsoids near the line from the light to the point.
+            const DirectionGrid<C>& grid = light_grids_[light_index];
+            first = grid.list(C(point.x) - grid.x(), C(point.y) - grid.y(), C(point.z) - grid.z(), &end);
+        } else {
+            bounds_.prepare(point, scratch.origin);
+            first = scratch.candidates.data();
+            end = first + bounds_.shadow_candidates(scratch.origin, to_light, light_index,
+                                                    scratch.candidates.data(), scratch.cull.data());
+        }
+        for (; first != end; ++first) {
+            const std::uint32_t i = *first;
             if (i != last && blocks(ellipsoids_[i], point, to_light)) {
                 scratch.last_occluder[light_index] = i;
                 return true;
@@ -132,6 +130,7 @@ public:
     }
 
     // The same without culling or memory: every ellipsoid is tried.
+    // (Kept for tests and callers that have no scratch.)
     bool in_shadow(const V& point, const V& to_light) const {
         for (const Ellipsoid<Real>& e : ellipsoids_)
             if (blocks(e, point, to_light)) return true;
@@ -139,6 +138,54 @@ public:
     }
 
 private:
+    using C = typename SphereBounds<Real>::C;
+    // Cells per cube-face side of the light buffers (direction_grid.h).
+    static constexpr int kGridCells = 16;
+
+    void build_grids() {
+        // The box of everything a ray can start from or go to: the ellipsoids' spheres,
+        // the lights and the camera. Grids are exact only where rounding is far below
+        // the spheres' inflation for all of it (sphere_bounds.h).
+        Vec3<C> lo{}, hi{};
+        auto grow = [&](C x, C y, C z, C r) {
+            lo = {std::min(lo.x, x - r), std::min(lo.y, y - r), std::min(lo.z, z - r)};
+            hi = {std::max(hi.x, x + r), std::max(hi.y, y + r), std::max(hi.z, z + r)};
+        };
+        std::vector<BoundingSphere<C>> spheres;
+        for (std::size_t i = 0; i < bounds_.size(); ++i) {
+            spheres.push_back(bounds_.sphere(i));
+            grow(spheres.back().x, spheres.back().y, spheres.back().z, spheres.back().radius);
+        }
+        for (const PointLight<Real>& l : lights_) grow(C(l.position.x), C(l.position.y), C(l.position.z), 0);
+        use_grids_ = bounds_.guards(lo, hi);
+        if (!use_grids_) return;
+        eye_grid_ = DirectionGrid<C>(0, 0, 0, spheres, kGridCells);
+        for (const PointLight<Real>& l : lights_)
+            light_grids_.emplace_back(C(l.position.x), C(l.position.y), C(l.position.z), spheres, kGridCells);
+    }
+
+    // The nearest hit among the ellipsoids [first, last), given in increasing order so
+    // that ties resolve exactly as in a loop over all of them.
+    Hit closest(const std::uint32_t* first, const std::uint32_t* last, const V& origin, const V& direction,
+                Real min_t) const {
+        // A root computed within a few ulps of min_t cannot be told from one at min_t, and
+        // one at min_t is not visible (the hit must lie beyond it). This decides the eye
+        // rays through the rim where the near plane cuts an ellipsoid: keyIllum's pixels
+        // (240,345), (360,345), (345,240), (345,360) have their far root at exactly t = 1
+        // (a 3-4-5 triangle), which double rounding puts 2 ulps above 1.
+        min_t *= Real(1) + Real(8) * std::numeric_limits<Real>::epsilon();
+        Hit best;
+        for (; first != last; ++first) {
+            const Ellipsoid<Real>& e = ellipsoids_[*first];
+            const Roots<Real> r = intersect(e, origin, direction);
+            if (!r.hit) continue;
+            const bool inside = !(r.near > min_t);
+            const Real t = inside ? r.far : r.near;
+            if (t > min_t && (best.ellipsoid == nullptr || t < best.t)) best = {&e, t, inside};
+        }
+        return best;
+    }
+
     static bool blocks(const Ellipsoid<Real>& e, const V& point, const V& to_light) {
         const Real min_t = Real(kShadowRayMinT);
         const Roots<Real> r = intersect(e, point, to_light);
@@ -147,14 +194,19 @@ private:
 
     V trace(const V& origin, const typename SphereBounds<Real>::OriginTerms& terms, const V& direction,
             Real min_t, int reflections_left, const V& miss, TraceScratch<Real>& scratch) const {
-        const Hit hit = nearest_hit(origin, terms, direction, min_t, scratch);
+        Hit hit;
+        if (&terms == &eye_terms_ && use_grids_) {
+            const std::uint32_t* last;
+            const std::uint32_t* first =
+                eye_grid_.list(C(direction.x), C(direction.y), C(direction.z), &last);
+            hit = closest(first, last, origin, direction, min_t);
+        } else {
+            hit = nearest_hit(origin, terms, direction, min_t, scratch);
+        }
         if (hit.ellipsoid == nullptr) return miss;
         const Ellipsoid<Real>& e = *hit.ellipsoid;
 
         const V point = origin + direction * hit.t;
-        // The point's sphere terms serve its shadow rays and its reflected ray; a deeper
-        // bounce overwrites them only after this level is done with them.
-        bounds_.prepare(point, scratch.origin);
         V normal = outward_normal(e, point);
         if (hit.inside) normal = -normal;  // seen from inside: face the viewer
         const V to_viewer = normalize(-direction);
@@ -180,9 +232,10 @@ private:
 
         if (e.kr > 0 && reflections_left > 0) {
             const V mirrored = direction - normal * (2 * dot(normal, direction));
+            bounds_.prepare(point, scratch.origin);
             // A reflected ray that hits nothing returns black, unlike an eye ray.
-            colour += trace(point, scratch.origin, mirrored, Real(kReflectedRayMinT), reflections_left - 1, V{},
-                            scratch) *
+            colour += trace(point, scratch.origin, mirrored, Real(kReflectedRayMinT), reflections_left - 1,
+                            V{}, scratch) *
                       e.kr;
         }
         return colour;
@@ -192,6 +245,9 @@ private:
     std::vector<PointLight<Real>> lights_;
     SphereBounds<Real> bounds_;
     typename SphereBounds<Real>::OriginTerms eye_terms_;
+    bool use_grids_ = false;
+    DirectionGrid<C> eye_grid_;
+    std::vector<DirectionGrid<C>> light_grids_;
     V ambient_;
     V background_;
 };
