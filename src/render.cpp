@@ -1,11 +1,21 @@
 #include "raytracer/render.h"
 
+#include <algorithm>
+#include <atomic>
+#include <thread>
+#include <vector>
+
 #include "raytracer/tracer.h"
 
 namespace rt {
 
+unsigned default_thread_count() {
+    const unsigned cores = std::thread::hardware_concurrency();
+    return cores == 0 ? 1 : cores;
+}
+
 template <typename Real>
-Image render(const Scene& scene) {
+Image render(const Scene& scene, unsigned threads) {
     const Tracer<Real> tracer(scene);
     Image image;
     image.width = scene.columns;
@@ -17,24 +27,47 @@ Image render(const Scene& scene) {
     const Real near_z = -static_cast<Real>(scene.near_plane);
     const Real columns = static_cast<Real>(scene.columns), rows = static_cast<Real>(scene.rows);
 
-    TraceScratch scratch = tracer.make_scratch();
-    std::uint8_t* out = image.rgb.data();
-    for (int r = 0; r < scene.rows; ++r) {
-        // The top-left corner of the pixel, not its centre: the keys demand it.
-        const Real y = top - (top - bottom) * static_cast<Real>(r) / rows;
-        for (int c = 0; c < scene.columns; ++c) {
-            const Real x = left + (right - left) * static_cast<Real>(c) / columns;
-            const Vec3<Real> colour = tracer.trace_eye_ray({x, y, near_z}, scratch);
-            *out++ = to_byte(colour.x);
-            *out++ = to_byte(colour.y);
-            *out++ = to_byte(colour.z);
+    // Every pixel is a pure function of the scene and its (column, row): no state
+    // carries from one pixel to the next that could change a value (the last-occluder
+    // memory in the scratch only reorders tests whose answer is a yes/no "any").
+    // So the image is byte-identical whichever thread renders which rows.
+    auto render_rows = [&](int first_row, int end_row, TraceScratch<Real>& scratch) {
+        std::uint8_t* out = image.rgb.data() +
+                            static_cast<std::size_t>(first_row) * static_cast<std::size_t>(scene.columns) * 3;
+        for (int r = first_row; r < end_row; ++r) {
+            // The top-left corner of the pixel, not its centre: the keys demand it.
+            const Real y = top - (top - bottom) * static_cast<Real>(r) / rows;
+            for (int c = 0; c < scene.columns; ++c) {
+                const Real x = left + (right - left) * static_cast<Real>(c) / columns;
+                const Vec3<Real> colour = tracer.trace_eye_ray({x, y, near_z}, scratch);
+                *out++ = to_byte(colour.x);
+                *out++ = to_byte(colour.y);
+                *out++ = to_byte(colour.z);
+            }
         }
-    }
+    };
+
+    // Rows are handed out in small bands from a shared counter, so that a thread that
+    // draws cheap rows (background) takes more of them and none idles at the end.
+    const int band = 4;
+    const int bands = (scene.rows + band - 1) / band;
+    if (threads == 0) threads = default_thread_count();
+    threads = std::min<unsigned>(threads, static_cast<unsigned>(bands));
+    std::atomic<int> next_band{0};
+    auto worker = [&] {
+        TraceScratch<Real> scratch = tracer.make_scratch();
+        for (int b = next_band++; b < bands; b = next_band++)
+            render_rows(b * band, std::min(scene.rows, (b + 1) * band), scratch);
+    };
+    std::vector<std::thread> pool;
+    for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
+    worker();  // the calling thread works too
+    for (std::thread& t : pool) t.join();
     return image;
 }
 
-template Image render<float>(const Scene&);
-template Image render<double>(const Scene&);
-template Image render<long double>(const Scene&);
+template Image render<float>(const Scene&, unsigned);
+template Image render<double>(const Scene&, unsigned);
+template Image render<long double>(const Scene&, unsigned);
 
 }  // namespace rt
