@@ -11,6 +11,7 @@
 
 #include "raytracer/direction_grid.h"
 #include "raytracer/ellipsoid.h"
+#include "raytracer/enclosures.h"
 #include "raytracer/scene.h"
 #include "raytracer/sphere_bounds.h"
 #include "raytracer/vec3.h"
@@ -58,6 +59,7 @@ public:
         bounds_ = SphereBounds<Real>(ellipsoids_, light_positions);
         bounds_.prepare(V{}, eye_terms_);  // every eye ray starts at the camera
         build_grids();
+        enclosures_ = Enclosures<Real>(ellipsoids_, light_positions);
     }
 
     // Working memory for one thread's rays.
@@ -121,7 +123,8 @@ public:
         }
         for (; first != end; ++first) {
             const std::uint32_t i = *first;
-            if (i != last && blocks(ellipsoids_[i], point, to_light)) {
+            if (i == last || enclosures_.contains_segment(point, light_index, i)) continue;
+            if (blocks(ellipsoids_[i], point, to_light)) {
                 scratch.last_occluder[light_index] = i;
                 return true;
             }
@@ -246,6 +249,7 @@ private:
     SphereBounds<Real> bounds_;
     typename SphereBounds<Real>::OriginTerms eye_terms_;
     bool use_grids_ = false;
+    Enclosures<Real> enclosures_;
     DirectionGrid<C> eye_grid_;
     std::vector<DirectionGrid<C>> light_grids_;
     V ambient_;
