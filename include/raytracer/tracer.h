@@ -13,6 +13,7 @@
 #include "raytracer/ellipsoid.h"
 #include "raytracer/enclosures.h"
 #include "raytracer/scene.h"
+#include "raytracer/shadow_prefilter.h"
 #include "raytracer/sphere_bounds.h"
 #include "raytracer/vec3.h"
 
@@ -60,6 +61,7 @@ public:
         bounds_.prepare(V{}, eye_terms_);  // every eye ray starts at the camera
         build_grids();
         enclosures_ = Enclosures<Real>(ellipsoids_, light_positions);
+        prefilter_ = ShadowPrefilter<Real>(ellipsoids_);
     }
 
     // Working memory for one thread's rays.
@@ -108,7 +110,7 @@ public:
     bool in_shadow(const V& point, const V& to_light, std::size_t light_index,
                    TraceScratch<Real>& scratch) const {
         const std::uint32_t last = scratch.last_occluder[light_index];
-        if (last != TraceScratch<Real>::kNone && blocks(ellipsoids_[last], point, to_light)) return true;
+        if (last != TraceScratch<Real>::kNone && blocks(last, point, to_light)) return true;
         const std::uint32_t* first;
         const std::uint32_t* end;
         if (use_grids_) {
@@ -124,7 +126,7 @@ public:
         for (; first != end; ++first) {
             const std::uint32_t i = *first;
             if (i == last || enclosures_.contains_segment(point, light_index, i)) continue;
-            if (blocks(ellipsoids_[i], point, to_light)) {
+            if (blocks(i, point, to_light)) {
                 scratch.last_occluder[light_index] = i;
                 return true;
             }
@@ -189,6 +191,14 @@ private:
         return best;
     }
 
+    // Whether ellipsoid i blocks the shadow ray; intersect() decides only where the
+    // prefilter cannot.
+    bool blocks(std::uint32_t i, const V& point, const V& to_light) const {
+        const auto answer = prefilter_.decide(point, to_light, i);
+        if (answer != ShadowPrefilter<Real>::kUnsure) return answer == ShadowPrefilter<Real>::kBlocked;
+        return blocks(ellipsoids_[i], point, to_light);
+    }
+
     static bool blocks(const Ellipsoid<Real>& e, const V& point, const V& to_light) {
         const Real min_t = Real(kShadowRayMinT);
         const Roots<Real> r = intersect(e, point, to_light);
@@ -250,6 +260,7 @@ private:
     typename SphereBounds<Real>::OriginTerms eye_terms_;
     bool use_grids_ = false;
     Enclosures<Real> enclosures_;
+    ShadowPrefilter<Real> prefilter_;
     DirectionGrid<C> eye_grid_;
     std::vector<DirectionGrid<C>> light_grids_;
     V ambient_;
