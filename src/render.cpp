@@ -15,8 +15,8 @@ unsigned default_thread_count() {
 }
 
 template <typename Real>
-Image render(const Scene& scene, unsigned threads) {
-    const Tracer<Real> tracer(scene);
+Image render(const Scene& scene, unsigned threads, bool accelerate) {
+    const Tracer<Real> tracer(scene, accelerate);
     Image image;
     image.width = scene.columns;
     image.height = scene.rows;
@@ -66,8 +66,8 @@ Image render(const Scene& scene, unsigned threads) {
     return image;
 }
 
-template Image render<float>(const Scene&, unsigned);
-template Image render<double>(const Scene&, unsigned);
-template Image render<long double>(const Scene&, unsigned);
+template Image render<float>(const Scene&, unsigned, bool);
+template Image render<double>(const Scene&, unsigned, bool);
+template Image render<long double>(const Scene&, unsigned, bool);
 
 }  // namespace rt

@@ -12,7 +12,8 @@ unsigned default_thread_count();
 
 // Instantiated for float, double and long double (src/render.cpp). threads = 0 means
 // default_thread_count(); the image is byte-identical for any number of threads.
+// accelerate = false renders without any shortcut (see Tracer), for tests.
 template <typename Real>
-Image render(const Scene& scene, unsigned threads = 0);
+Image render(const Scene& scene, unsigned threads = 0, bool accelerate = true);
 
 }  // namespace rt

@@ -47,7 +47,10 @@ class Tracer {
 public:
     using V = Vec3<Real>;
 
-    explicit Tracer(const Scene& scene)
+    // accelerate = false turns off every shortcut (culling, light buffers, prefilter):
+    // each ray is then tested against every ellipsoid with intersect(), the reference
+    // that the tests hold the accelerated images to, byte for byte.
+    explicit Tracer(const Scene& scene, bool accelerate = true)
         : ambient_(V::from(scene.ambient)), background_(V::from(scene.background)) {
         ellipsoids_.reserve(scene.spheres.size());
         for (const SphereSpec& s : scene.spheres) ellipsoids_.push_back(make_ellipsoid<Real>(s));
@@ -57,8 +60,9 @@ public:
             lights_.push_back({V::from(l.position), V::from(l.intensity)});
             light_positions.push_back(V::from(l.position));
         }
-        bounds_ = SphereBounds<Real>(ellipsoids_, light_positions);
+        bounds_ = SphereBounds<Real>(ellipsoids_, light_positions, accelerate);
         bounds_.prepare(V{}, eye_terms_);  // every eye ray starts at the camera
+        if (!accelerate) return;
         build_grids();
         enclosures_ = Enclosures<Real>(ellipsoids_, light_positions);
         prefilter_ = ShadowPrefilter<Real>(ellipsoids_);
