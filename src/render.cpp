@@ -31,15 +31,35 @@ Image render(const Scene& scene, unsigned threads, bool accelerate) {
     // carries from one pixel to the next that could change a value (the last-occluder
     // memory in the scratch only reorders tests whose answer is a yes/no "any").
     // So the image is byte-identical whichever thread renders which rows.
-    auto render_rows = [&](int first_row, int end_row, TraceScratch<Real>& scratch) {
+    // Which ellipsoids each pixel's eye ray may meet (screen_bounds.h): a pixel that
+    // none may meet is the background, without tracing.
+    const std::vector<PixelRect> rects = tracer.screen_rects(scene);
+    const Vec3<Real> back = tracer.background();
+    const std::uint8_t background[3] = {to_byte(back.x), to_byte(back.y), to_byte(back.z)};
+
+    auto render_rows = [&](int first_row, int end_row, TraceScratch<Real>& scratch,
+                           std::vector<std::uint32_t>& in_row, std::vector<std::uint32_t>& in_pixel) {
         std::uint8_t* out = image.rgb.data() +
                             static_cast<std::size_t>(first_row) * static_cast<std::size_t>(scene.columns) * 3;
         for (int r = first_row; r < end_row; ++r) {
+            in_row.clear();
+            for (std::uint32_t i = 0; i < rects.size(); ++i)
+                if (rects[i].first_row <= r && r <= rects[i].last_row) in_row.push_back(i);
             // The top-left corner of the pixel, not its centre: the keys demand it.
             const Real y = top - (top - bottom) * static_cast<Real>(r) / rows;
             for (int c = 0; c < scene.columns; ++c) {
+                std::size_t count = 0;
+                for (const std::uint32_t i : in_row)
+                    if (rects[i].first_column <= c && c <= rects[i].last_column) in_pixel[count++] = i;
+                if (count == 0) {
+                    *out++ = background[0];
+                    *out++ = background[1];
+                    *out++ = background[2];
+                    continue;
+                }
                 const Real x = left + (right - left) * static_cast<Real>(c) / columns;
-                const Vec3<Real> colour = tracer.trace_eye_ray({x, y, near_z}, scratch);
+                const Vec3<Real> colour =
+                    tracer.trace_eye_ray({x, y, near_z}, in_pixel.data(), in_pixel.data() + count, scratch);
                 *out++ = to_byte(colour.x);
                 *out++ = to_byte(colour.y);
                 *out++ = to_byte(colour.z);
@@ -56,8 +76,10 @@ Image render(const Scene& scene, unsigned threads, bool accelerate) {
     std::atomic<int> next_band{0};
     auto worker = [&] {
         TraceScratch<Real> scratch = tracer.make_scratch();
+        std::vector<std::uint32_t> in_row, in_pixel(rects.size());
+        in_row.reserve(rects.size());
         for (int b = next_band++; b < bands; b = next_band++)
-            render_rows(b * band, std::min(scene.rows, (b + 1) * band), scratch);
+            render_rows(b * band, std::min(scene.rows, (b + 1) * band), scratch, in_row, in_pixel);
     };
     std::vector<std::thread> pool;
     for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);

@@ -1,7 +1,7 @@
-// A "light buffer" (Haines and Greenberg, 1986): around a fixed point X (a light, or the
-// camera), a cube of directions cut into N x N cells per face; each cell lists, in
+// A "light buffer" (Haines and Greenberg, 1986): around a fixed point X (a light), a
+// cube of directions cut into N x N cells per face; each cell lists, in
 // increasing order, the ellipsoids whose bounding sphere some ray from X through the
-// cell may meet. A shadow ray (or an eye ray) then intersects only its cell's list.
+// cell may meet. A shadow ray then intersects only its cell's list.
 //
 // WHY: every shadow ray from a hit point to a light lies on the line through the
 // light, so one table per light, built once, replaces a test against every ellipsoid

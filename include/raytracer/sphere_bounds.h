@@ -81,14 +81,19 @@ public:
     // Whether every ellipsoid is within the guard distance of every point of the box
     // [lo, hi]: then rounding cannot approach the inflation for any ray starting there.
     bool guards(const Vec3<C>& lo, const Vec3<C>& hi) const {
-        for (std::size_t i = 0; i < size(); ++i) {
+        for (std::size_t i = 0; i < size(); ++i)
+            if (!guards(lo, hi, i)) return false;
+        return true;
+    }
+    // The same for ellipsoid i alone.
+    bool guards(const Vec3<C>& lo, const Vec3<C>& hi, std::size_t i) const {
+        {
             using std::abs;
             const C dx = std::max(abs(lo.x - cx_[i]), abs(hi.x - cx_[i]));
             const C dy = std::max(abs(lo.y - cy_[i]), abs(hi.y - cy_[i]));
             const C dz = std::max(abs(lo.z - cz_[i]), abs(hi.z - cz_[i]));
-            if (!(dx * dx + dy * dy + dz * dz <= guard2_[i])) return false;
+            return dx * dx + dy * dy + dz * dz <= guard2_[i];
         }
-        return true;
     }
 
     // The terms of every sphere that depend on the ray's origin alone: they are shared by
