@@ -14,6 +14,14 @@ unsigned default_thread_count() {
     return cores == 0 ? 1 : cores;
 }
 
+namespace {
+// An ellipsoid that some pixels of a row may see, and which columns.
+struct Span {
+    std::uint32_t ellipsoid;
+    int first, last;
+};
+}  // namespace
+
 template <typename Real>
 Image render(const Scene& scene, unsigned threads, bool accelerate) {
     const Tracer<Real> tracer(scene, accelerate);
@@ -34,23 +42,29 @@ Image render(const Scene& scene, unsigned threads, bool accelerate) {
     // Which ellipsoids each pixel's eye ray may meet (screen_bounds.h): a pixel that
     // none may meet is the background, without tracing.
     const std::vector<PixelRect> rects = tracer.screen_rects(scene);
+    const auto spans = tracer.row_spans(scene);
     const Vec3<Real> back = tracer.background();
     const std::uint8_t background[3] = {to_byte(back.x), to_byte(back.y), to_byte(back.z)};
 
-    auto render_rows = [&](int first_row, int end_row, TraceScratch<Real>& scratch,
-                           std::vector<std::uint32_t>& in_row, std::vector<std::uint32_t>& in_pixel) {
+    auto render_rows = [&](int first_row, int end_row, TraceScratch<Real>& scratch, std::vector<Span>& in_row,
+                           std::vector<std::uint32_t>& in_pixel) {
         std::uint8_t* out = image.rgb.data() +
                             static_cast<std::size_t>(first_row) * static_cast<std::size_t>(scene.columns) * 3;
         for (int r = first_row; r < end_row; ++r) {
             in_row.clear();
-            for (std::uint32_t i = 0; i < rects.size(); ++i)
-                if (rects[i].first_row <= r && r <= rects[i].last_row) in_row.push_back(i);
+            const double row_y = scene.top - (scene.top - scene.bottom) * r / scene.rows;
+            for (std::uint32_t i = 0; i < rects.size(); ++i) {
+                Span span{i, rects[i].first_column, rects[i].last_column};
+                if (rects[i].first_row <= r && r <= rects[i].last_row &&
+                    spans.narrow(i, row_y, span.first, span.last))
+                    in_row.push_back(span);
+            }
             // The top-left corner of the pixel, not its centre: the keys demand it.
             const Real y = top - (top - bottom) * static_cast<Real>(r) / rows;
             for (int c = 0; c < scene.columns; ++c) {
                 std::size_t count = 0;
-                for (const std::uint32_t i : in_row)
-                    if (rects[i].first_column <= c && c <= rects[i].last_column) in_pixel[count++] = i;
+                for (const Span& span : in_row)
+                    if (span.first <= c && c <= span.last) in_pixel[count++] = span.ellipsoid;
                 if (count == 0) {
                     *out++ = background[0];
                     *out++ = background[1];
@@ -76,7 +90,8 @@ Image render(const Scene& scene, unsigned threads, bool accelerate) {
     std::atomic<int> next_band{0};
     auto worker = [&] {
         TraceScratch<Real> scratch = tracer.make_scratch();
-        std::vector<std::uint32_t> in_row, in_pixel(rects.size());
+        std::vector<Span> in_row;
+        std::vector<std::uint32_t> in_pixel(rects.size());
         in_row.reserve(rects.size());
         for (int b = next_band++; b < bands; b = next_band++)
             render_rows(b * band, std::min(scene.rows, (b + 1) * band), scratch, in_row, in_pixel);

@@ -47,6 +47,7 @@ template <typename Real>
 class Tracer {
 public:
     using V = Vec3<Real>;
+    using C = typename SphereBounds<Real>::C;  // the precision of the culling arithmetic
 
     // accelerate = false turns off every shortcut (culling, light buffers, prefilter):
     // each ray is then tested against every ellipsoid with intersect(), the reference
@@ -101,6 +102,18 @@ public:
             usable.push_back(accelerate_ && bounds_.guards({0, 0, 0}, {0, 0, 0}, i));
         }
         return screen_bounds(scene, spheres, usable);
+    }
+
+    // Per ellipsoid, the columns of a row that may see it (screen_bounds.h).
+    RowSpans<C> row_spans(const Scene& scene) const {
+        std::vector<Vec3<C>> centres, scales;
+        std::vector<bool> usable;
+        for (std::size_t i = 0; i < ellipsoids_.size(); ++i) {
+            centres.push_back(Vec3<C>::from(ellipsoids_[i].centre));
+            scales.push_back(Vec3<C>::from(ellipsoids_[i].scale));
+            usable.push_back(accelerate_ && bounds_.guards({0, 0, 0}, {0, 0, 0}, i));
+        }
+        return RowSpans<C>(scene, centres, scales, usable);
     }
 
     const V& background() const { return background_; }
@@ -170,7 +183,6 @@ public:
     }
 
 private:
-    using C = typename SphereBounds<Real>::C;
     // Cells per cube-face side of the light buffers (direction_grid.h).
     static constexpr int kGridCells = 16;
 
