@@ -63,7 +63,10 @@ rt::Scene random_scene(unsigned seed) {
         if (g() % 6 == 0) e.scale.z = 0.001;           // a thin disc
         if (g() % 8 == 0) e.centre.z = -s.near_plane;  // cut by the near plane
         e.colour = {uniform(g, 0, 1), uniform(g, 0, 1), uniform(g, 0, 1)};
-        e.ka = 0.2, e.kd = 0.6, e.ks = 0.5, e.kr = g() % 2 ? 0.5 : 0, e.shininess = 1 + g() % 60;
+        e.ka = 0.2, e.kr = g() % 2 ? 0.5 : 0;
+        e.kd = g() % 4 ? 0.6 : 0;  // Kd = 0 and Ks = 0 take shading shortcuts
+        e.ks = g() % 3 ? 0.5 : 0;
+        e.shininess = static_cast<double>(1 + g() % 60) + (g() % 2 ? 0.5 : 0);
         s.spheres.push_back(e);
     }
     if (g() % 2) {  // the eye inside a mirror room
