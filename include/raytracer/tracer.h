@@ -66,7 +66,12 @@ public:
         bounds_.prepare(V{}, eye_terms_);  // every eye ray starts at the camera
         accelerate_ = accelerate;
         if (!accelerate) return;
-        build_grids();
+        // Light buffers pay when there are more shadow rays than cells, and are not
+        // built where their tables would be huge (thousands of lights and ellipsoids).
+        const double cells = 6.0 * kGridCells * kGridCells;
+        const double pixels = double(scene.columns) * double(scene.rows);
+        if (pixels >= cells && cells * double(ellipsoids_.size()) * double(lights_.size()) <= 5e7)
+            build_grids();
         enclosures_ = Enclosures<Real>(ellipsoids_, light_positions);
         prefilter_ = ShadowPrefilter<Real>(ellipsoids_);
     }
