@@ -1,6 +1,7 @@
 // raytracer.exe <scene-file>: renders the scene and writes the P6 image its OUTPUT
 // line names. Exit statuses are listed in usage_text() and README.md.
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <new>
@@ -24,7 +25,7 @@ enum ExitStatus : int {
 };
 
 const char* usage_text() {
-    return "usage: raytracer.exe <scene-file>\n"
+    return "usage: raytracer.exe [--threads N] <scene-file>\n"
            "       raytracer.exe --help | --version\n"
            "\n"
            "Renders a scene of ellipsoids and point lights (Phong shading, hard shadows,\n"
@@ -38,6 +39,9 @@ const char* usage_text() {
            "  SPHERE name x y z sx sy sz r g b Ka Kd Ks Kr n  (any number)\n"
            "  LIGHT name x y z Ir Ig Ib                     (any number)\n"
            "  BACK r g b | AMBIENT Ir Ig Ib | OUTPUT file     (each exactly once)\n"
+           "\n"
+           "--threads N renders on N threads (default: all cores); the image is the\n"
+           "same, byte for byte, for any N.\n"
            "\n"
            "Exit status: 0 written; 1 bad scene file; 2 bad command line;\n"
            "3 image not writable; 4 out of memory; 5 internal error.\n"
@@ -57,6 +61,20 @@ int main(int argc, char** argv) {
     }
     // Every error is one line on stderr (graders collect them), so usage errors only
     // point at --help instead of printing the whole text.
+    // --threads N, before the scene file: for measuring; the image does not depend on it.
+    unsigned threads = 0;
+    if (argc >= 2 && std::strcmp(argv[1], "--threads") == 0) {
+        char* end = nullptr;
+        const unsigned long n = argc >= 3 ? std::strtoul(argv[2], &end, 10) : 0;
+        if (argc < 3 || end == argv[2] || *end != '\0' || n == 0 || n > 1024 || argv[2][0] == '-') {
+            std::fprintf(stderr,
+                         "raytracer.exe: error: --threads, expected a whole number from 1 to 1024 (see --help)\n");
+            return kBadUsage;
+        }
+        threads = static_cast<unsigned>(n);
+        argc -= 2;
+        argv += 2;
+    }
     if (argc != 2 || argv[1][0] == '\0') {
         const char* found = argc < 2   ? "no scene file given"
                             : argc > 2 ? "more than one argument"
@@ -72,7 +90,7 @@ int main(int argc, char** argv) {
         // Find out that the image cannot be written before spending the render on it.
         std::string error = rt::check_writable(scene.output.c_str());
         if (error.empty()) {
-            const rt::Image image = rt::render<double>(scene);
+            const rt::Image image = rt::render<double>(scene, threads);
             error = rt::save_imageP6(image.width, image.height, scene.output.c_str(), image.rgb.data());
         }
         if (!error.empty()) {

@@ -1,12 +1,30 @@
 #include "raytracer/render.h"
 
+#include <algorithm>
+#include <atomic>
+#include <thread>
+#include <vector>
+
 #include "raytracer/tracer.h"
 
 namespace rt {
 
+unsigned default_thread_count() {
+    const unsigned cores = std::thread::hardware_concurrency();
+    return cores == 0 ? 1 : cores;
+}
+
+namespace {
+// An ellipsoid that some pixels of a row may see, and which columns.
+struct Span {
+    std::uint32_t ellipsoid;
+    int first, last;
+};
+}  // namespace
+
 template <typename Real>
-Image render(const Scene& scene) {
-    const Tracer<Real> tracer(scene);
+Image render(const Scene& scene, unsigned threads, bool accelerate) {
+    const Tracer<Real> tracer(scene, accelerate);
     Image image;
     image.width = scene.columns;
     image.height = scene.rows;
@@ -17,23 +35,76 @@ Image render(const Scene& scene) {
     const Real near_z = -static_cast<Real>(scene.near_plane);
     const Real columns = static_cast<Real>(scene.columns), rows = static_cast<Real>(scene.rows);
 
-    std::uint8_t* out = image.rgb.data();
-    for (int r = 0; r < scene.rows; ++r) {
-        // The top-left corner of the pixel, not its centre: the keys demand it.
-        const Real y = top - (top - bottom) * static_cast<Real>(r) / rows;
-        for (int c = 0; c < scene.columns; ++c) {
-            const Real x = left + (right - left) * static_cast<Real>(c) / columns;
-            const Vec3<Real> colour = tracer.trace_eye_ray({x, y, near_z});
-            *out++ = to_byte(colour.x);
-            *out++ = to_byte(colour.y);
-            *out++ = to_byte(colour.z);
+    // Every pixel is a pure function of the scene and its (column, row): no state
+    // carries from one pixel to the next that could change a value (the last-occluder
+    // memory in the scratch only reorders tests whose answer is a yes/no "any").
+    // So the image is byte-identical whichever thread renders which rows.
+    // Which ellipsoids each pixel's eye ray may meet (screen_bounds.h): a pixel that
+    // none may meet is the background, without tracing.
+    const std::vector<PixelRect> rects = tracer.screen_rects(scene);
+    const auto spans = tracer.row_spans(scene);
+    const Vec3<Real> back = tracer.background();
+    const std::uint8_t background[3] = {to_byte(back.x), to_byte(back.y), to_byte(back.z)};
+
+    auto render_rows = [&](int first_row, int end_row, TraceScratch<Real>& scratch, std::vector<Span>& in_row,
+                           std::vector<std::uint32_t>& in_pixel) {
+        std::uint8_t* out = image.rgb.data() +
+                            static_cast<std::size_t>(first_row) * static_cast<std::size_t>(scene.columns) * 3;
+        for (int r = first_row; r < end_row; ++r) {
+            in_row.clear();
+            const double row_y = scene.top - (scene.top - scene.bottom) * r / scene.rows;
+            for (std::uint32_t i = 0; i < rects.size(); ++i) {
+                Span span{i, rects[i].first_column, rects[i].last_column};
+                if (rects[i].first_row <= r && r <= rects[i].last_row &&
+                    spans.narrow(i, row_y, span.first, span.last))
+                    in_row.push_back(span);
+            }
+            // The top-left corner of the pixel, not its centre: the keys demand it.
+            const Real y = top - (top - bottom) * static_cast<Real>(r) / rows;
+            for (int c = 0; c < scene.columns; ++c) {
+                std::size_t count = 0;
+                for (const Span& span : in_row)
+                    if (span.first <= c && c <= span.last) in_pixel[count++] = span.ellipsoid;
+                if (count == 0) {
+                    *out++ = background[0];
+                    *out++ = background[1];
+                    *out++ = background[2];
+                    continue;
+                }
+                const Real x = left + (right - left) * static_cast<Real>(c) / columns;
+                const Vec3<Real> colour =
+                    tracer.trace_eye_ray({x, y, near_z}, in_pixel.data(), in_pixel.data() + count, scratch);
+                *out++ = to_byte(colour.x);
+                *out++ = to_byte(colour.y);
+                *out++ = to_byte(colour.z);
+            }
         }
-    }
+    };
+
+    // Rows are handed out in small bands from a shared counter, so that a thread that
+    // draws cheap rows (background) takes more of them and none idles at the end.
+    const int band = 4;
+    const int bands = (scene.rows + band - 1) / band;
+    if (threads == 0) threads = default_thread_count();
+    threads = std::min<unsigned>(threads, static_cast<unsigned>(bands));
+    std::atomic<int> next_band{0};
+    auto worker = [&] {
+        TraceScratch<Real> scratch = tracer.make_scratch();
+        std::vector<Span> in_row;
+        std::vector<std::uint32_t> in_pixel(rects.size());
+        in_row.reserve(rects.size());
+        for (int b = next_band++; b < bands; b = next_band++)
+            render_rows(b * band, std::min(scene.rows, (b + 1) * band), scratch, in_row, in_pixel);
+    };
+    std::vector<std::thread> pool;
+    for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
+    worker();  // the calling thread works too
+    for (std::thread& t : pool) t.join();
     return image;
 }
 
-template Image render<float>(const Scene&);
-template Image render<double>(const Scene&);
-template Image render<long double>(const Scene&);
+template Image render<float>(const Scene&, unsigned, bool);
+template Image render<double>(const Scene&, unsigned, bool);
+template Image render<long double>(const Scene&, unsigned, bool);
 
 }  // namespace rt

@@ -7,8 +7,13 @@
 
 namespace rt {
 
-// Instantiated for float, double and long double (src/render.cpp).
+// The number of threads render() uses by default: all cores.
+unsigned default_thread_count();
+
+// Instantiated for float, double and long double (src/render.cpp). threads = 0 means
+// default_thread_count(); the image is byte-identical for any number of threads.
+// accelerate = false renders without any shortcut (see Tracer), for tests.
 template <typename Real>
-Image render(const Scene& scene);
+Image render(const Scene& scene, unsigned threads = 0, bool accelerate = true);
 
 }  // namespace rt

@@ -2,12 +2,21 @@
 // that the same code renders in float, double and long double.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <vector>
 
+#include "raytracer/direction_grid.h"
 #include "raytracer/ellipsoid.h"
+#include "raytracer/enclosures.h"
 #include "raytracer/scene.h"
+#include "raytracer/scene_precision.h"
+#include "raytracer/screen_bounds.h"
+#include "raytracer/shadow_prefilter.h"
+#include "raytracer/sphere_bounds.h"
 #include "raytracer/vec3.h"
 
 namespace rt {
@@ -24,23 +33,99 @@ struct PointLight {
     Vec3<Real> intensity;
 };
 
+// Per-thread working memory of a Tracer, so that no ray allocates: the candidate lists
+// of the bounding-sphere culling and, per light, the ellipsoid that last blocked it.
+template <typename Real>
+struct TraceScratch {
+    typename SphereBounds<Real>::OriginTerms origin;  // of the current hit point
+    std::vector<std::uint32_t> candidates;
+    std::vector<typename SphereBounds<Real>::C> cull;  // per ellipsoid: culled when not 0
+    std::vector<std::uint32_t> last_occluder;          // per light; kNone when none yet
+    static constexpr std::uint32_t kNone = 0xffffffffu;
+};
+
 template <typename Real>
 class Tracer {
 public:
     using V = Vec3<Real>;
+    using C = typename SphereBounds<Real>::C;  // the precision of the culling arithmetic
 
-    explicit Tracer(const Scene& scene)
+    // accelerate = false turns off every shortcut (culling, light buffers, prefilter):
+    // each ray is then tested against every ellipsoid with intersect(), the reference
+    // that the tests hold the accelerated images to, byte for byte.
+    explicit Tracer(const Scene& scene, bool accelerate = true)
         : ambient_(V::from(scene.ambient)), background_(V::from(scene.background)) {
         ellipsoids_.reserve(scene.spheres.size());
         for (const SphereSpec& s : scene.spheres) ellipsoids_.push_back(make_ellipsoid<Real>(s));
         lights_.reserve(scene.lights.size());
-        for (const LightSpec& l : scene.lights)
+        std::vector<V> light_positions;
+        for (const LightSpec& l : scene.lights) {
             lights_.push_back({V::from(l.position), V::from(l.intensity)});
+            light_positions.push_back(V::from(l.position));
+        }
+        bounds_ = SphereBounds<Real>(ellipsoids_, light_positions, accelerate);
+        bounds_.prepare(V{}, eye_terms_);  // every eye ray starts at the camera
+        accelerate_ = accelerate;
+        if (!accelerate) return;
+        // Light buffers pay when there are more shadow rays than cells, and are not
+        // built where their tables would be huge (thousands of lights and ellipsoids).
+        const double cells = 6.0 * kGridCells * kGridCells;
+        const double pixels = double(scene.columns) * double(scene.rows);
+        if (pixels >= cells && cells * double(ellipsoids_.size()) * double(lights_.size()) <= 5e7)
+            build_grids();
+        enclosures_ = Enclosures<Real>(ellipsoids_, light_positions);
+        prefilter_ = ShadowPrefilter<Real>(ellipsoids_);
+    }
+
+    // Working memory for one thread's rays.
+    TraceScratch<Real> make_scratch() const {
+        TraceScratch<Real> s;
+        s.candidates.resize(ellipsoids_.size());
+        s.cull.resize(ellipsoids_.size());
+        s.last_occluder.assign(lights_.size(), TraceScratch<Real>::kNone);
+        return s;
     }
 
     // The colour seen along an eye ray from the origin (the camera) in this direction.
+    V trace_eye_ray(const V& direction, TraceScratch<Real>& scratch) const {
+        return trace(V{}, eye_terms_, direction, Real(kEyeRayMinT), kMaxReflections, background_, scratch);
+    }
+    // The same when only the ellipsoids [first, last) (increasing) can meet the ray, as
+    // the renderer knows from screen_rects().
+    V trace_eye_ray(const V& direction, const std::uint32_t* first, const std::uint32_t* last,
+                    TraceScratch<Real>& scratch) const {
+        const Hit hit = closest(first, last, V{}, direction, Real(kEyeRayMinT));
+        return hit.ellipsoid == nullptr ? background_ : shade(hit, V{}, direction, kMaxReflections, scratch);
+    }
+
+    // Per ellipsoid, the pixels outside which no eye ray meets it (screen_bounds.h);
+    // the whole screen for each when not accelerating.
+    std::vector<PixelRect> screen_rects(const Scene& scene) const {
+        std::vector<BoundingSphere<C>> spheres;
+        std::vector<bool> usable;
+        for (std::size_t i = 0; i < bounds_.size(); ++i) {
+            spheres.push_back(bounds_.sphere(i));
+            usable.push_back(accelerate_ && bounds_.guards({0, 0, 0}, {0, 0, 0}, i));
+        }
+        return screen_bounds(scene, spheres, usable);
+    }
+
+    // Per ellipsoid, the columns of a row that may see it (screen_bounds.h).
+    RowSpans<C> row_spans(const Scene& scene) const {
+        std::vector<Vec3<C>> centres, scales;
+        std::vector<bool> usable;
+        for (std::size_t i = 0; i < ellipsoids_.size(); ++i) {
+            centres.push_back(Vec3<C>::from(ellipsoids_[i].centre));
+            scales.push_back(Vec3<C>::from(ellipsoids_[i].scale));
+            usable.push_back(accelerate_ && bounds_.guards({0, 0, 0}, {0, 0, 0}, i));
+        }
+        return RowSpans<C>(scene, centres, scales, usable);
+    }
+
+    const V& background() const { return background_; }
     V trace_eye_ray(const V& direction) const {
-        return trace(V{}, direction, Real(kEyeRayMinT), kMaxReflections, background_);
+        TraceScratch<Real> scratch = make_scratch();
+        return trace_eye_ray(direction, scratch);
     }
 
     // The nearest surface along origin + t direction with t > min_t.
@@ -50,17 +135,99 @@ public:
         bool inside = false;  // the far root was taken: the ray sees the inner surface
     };
 
-    // A root computed within a few ulps of min_t cannot be told from one at min_t, and
-    // one at min_t is not visible (the hit must lie beyond it). This decides the eye
-    // rays through the rim where the near plane cuts an ellipsoid: keyIllum's pixels
-    // (240,345), (360,345), (345,240), (345,360) have their far root at exactly t = 1
-    // (a 3-4-5 triangle), which double rounding puts 2 ulps above 1. The ulps are those
-    // of the scene's double numbers, whatever Real is (scene_precision.h), so
-    // that long double decides these pixels as double does.
+    // Only the ellipsoids the bounding spheres cannot rule out are intersected.
+    Hit nearest_hit(const V& origin, const typename SphereBounds<Real>::OriginTerms& terms,
+                    const V& direction, Real min_t, TraceScratch<Real>& scratch) const {
+        const std::uint32_t* first = scratch.candidates.data();
+        const std::uint32_t* last =
+            first + bounds_.candidates(terms, direction, scratch.candidates.data(), scratch.cull.data());
+        return closest(first, last, origin, direction, min_t);
+    }
     Hit nearest_hit(const V& origin, const V& direction, Real min_t) const {
+        TraceScratch<Real> scratch = make_scratch();
+        bounds_.prepare(origin, scratch.origin);
+        return nearest_hit(origin, scratch.origin, direction, min_t, scratch);
+    }
+
+    // A light is blocked when any ellipsoid lies on the segment from the point to it.
+    // The direction is light - point, not normalised, so the light is at t = 1.
+    // Any blocker will do, so the search stops at the first; it tries first the one that
+    // blocked this light last on this thread (neighbouring pixels share their shadows).
+    bool in_shadow(const V& point, const V& to_light, std::size_t light_index,
+                   TraceScratch<Real>& scratch) const {
+        const std::uint32_t last = scratch.last_occluder[light_index];
+        if (last != TraceScratch<Real>::kNone && blocks(last, point, to_light)) return true;
+        const std::uint32_t* first;
+        const std::uint32_t* end;
+        if (use_grids_) {
+            // The light buffer: the ellipsoids near the line from the light to the point.
+            const DirectionGrid<C>& grid = light_grids_[light_index];
+            first = grid.list(C(point.x) - grid.x(), C(point.y) - grid.y(), C(point.z) - grid.z(), &end);
+        } else {
+            bounds_.prepare(point, scratch.origin);
+            first = scratch.candidates.data();
+            end = first + bounds_.shadow_candidates(scratch.origin, to_light, light_index,
+                                                    scratch.candidates.data(), scratch.cull.data());
+        }
+        for (; first != end; ++first) {
+            const std::uint32_t i = *first;
+            if (i == last || enclosures_.contains_segment(point, light_index, i)) continue;
+            if (blocks(i, point, to_light)) {
+                scratch.last_occluder[light_index] = i;
+                return true;
+            }
+        }
+        return false;
+    }
+
+    // The same without culling or memory: every ellipsoid is tried.
+    // (Kept for tests and callers that have no scratch.)
+    bool in_shadow(const V& point, const V& to_light) const {
+        for (const Ellipsoid<Real>& e : ellipsoids_)
+            if (blocks(e, point, to_light)) return true;
+        return false;
+    }
+
+private:
+    // Cells per cube-face side of the light buffers (direction_grid.h).
+    static constexpr int kGridCells = 16;
+
+    void build_grids() {
+        // The box of everything a ray can start from or go to: the ellipsoids' spheres,
+        // the lights and the camera. Grids are exact only where rounding is far below
+        // the spheres' inflation for all of it (sphere_bounds.h).
+        Vec3<C> lo{}, hi{};
+        auto grow = [&](C x, C y, C z, C r) {
+            lo = {std::min(lo.x, x - r), std::min(lo.y, y - r), std::min(lo.z, z - r)};
+            hi = {std::max(hi.x, x + r), std::max(hi.y, y + r), std::max(hi.z, z + r)};
+        };
+        std::vector<BoundingSphere<C>> spheres;
+        for (std::size_t i = 0; i < bounds_.size(); ++i) {
+            spheres.push_back(bounds_.sphere(i));
+            grow(spheres.back().x, spheres.back().y, spheres.back().z, spheres.back().radius);
+        }
+        for (const PointLight<Real>& l : lights_) grow(C(l.position.x), C(l.position.y), C(l.position.z), 0);
+        use_grids_ = bounds_.guards(lo, hi);
+        if (!use_grids_) return;
+        for (const PointLight<Real>& l : lights_)
+            light_grids_.emplace_back(C(l.position.x), C(l.position.y), C(l.position.z), spheres, kGridCells);
+    }
+
+    // The nearest hit among the ellipsoids [first, last), given in increasing order so
+    // that ties resolve exactly as in a loop over all of them.
+    Hit closest(const std::uint32_t* first, const std::uint32_t* last, const V& origin, const V& direction,
+                Real min_t) const {
+        // A root computed within a few ulps of min_t cannot be told from one at min_t, and
+        // one at min_t is not visible (the hit must lie beyond it). This decides the eye
+        // rays through the rim where the near plane cuts an ellipsoid: keyIllum's pixels
+        // (240,345), (360,345), (345,240), (345,360) have their far root at exactly t = 1
+        // (a 3-4-5 triangle), which double rounding puts 2 ulps above 1. The ulps are those
+        // of the scene's double numbers, whatever Real is (scene_precision.h), so that long
+        // double decides these pixels as double does.
         min_t *= Real(1) + Real(8) * scene_epsilon<Real>();
         Hit best;
-        for (const Ellipsoid<Real>& e : ellipsoids_) {
+        for (; first != last; ++first) {
+            const Ellipsoid<Real>& e = ellipsoids_[*first];
             const Roots<Real> r = intersect(e, origin, direction);
             if (!r.hit) continue;
             const bool inside = !(r.near > min_t);
@@ -70,39 +237,60 @@ public:
         return best;
     }
 
-    // A light is blocked when any ellipsoid lies on the segment from the point to it.
-    // The direction is light - point, not normalised, so the light is at t = 1.
-    bool in_shadow(const V& point, const V& to_light) const {
-        const Real min_t = Real(kShadowRayMinT);
-        for (const Ellipsoid<Real>& e : ellipsoids_) {
-            const Roots<Real> r = intersect(e, point, to_light);
-            if (!r.hit) continue;
-            if ((r.near > min_t && r.near < 1) || (r.far > min_t && r.far < 1)) return true;
-        }
-        return false;
+    // Whether ellipsoid i blocks the shadow ray; intersect() decides only where the
+    // prefilter cannot.
+    bool blocks(std::uint32_t i, const V& point, const V& to_light) const {
+        const auto answer = prefilter_.decide(point, to_light, i);
+        if (answer != ShadowPrefilter<Real>::kUnsure) return answer == ShadowPrefilter<Real>::kBlocked;
+        return blocks(ellipsoids_[i], point, to_light);
     }
 
-private:
-    V trace(const V& origin, const V& direction, Real min_t, int reflections_left, const V& miss) const {
-        const Hit hit = nearest_hit(origin, direction, min_t);
-        if (hit.ellipsoid == nullptr) return miss;
+    static bool blocks(const Ellipsoid<Real>& e, const V& point, const V& to_light) {
+        const Real min_t = Real(kShadowRayMinT);
+        const Roots<Real> r = intersect(e, point, to_light);
+        return r.hit && ((r.near > min_t && r.near < 1) || (r.far > min_t && r.far < 1));
+    }
+
+    V trace(const V& origin, const typename SphereBounds<Real>::OriginTerms& terms, const V& direction,
+            Real min_t, int reflections_left, const V& miss, TraceScratch<Real>& scratch) const {
+        const Hit hit = nearest_hit(origin, terms, direction, min_t, scratch);
+        return hit.ellipsoid == nullptr ? miss : shade(hit, origin, direction, reflections_left, scratch);
+    }
+
+    // The colour of the surface hit by origin + t direction.
+    V shade(const Hit& hit, const V& origin, const V& direction, int reflections_left,
+            TraceScratch<Real>& scratch) const {
         const Ellipsoid<Real>& e = *hit.ellipsoid;
 
         const V point = origin + direction * hit.t;
         V normal = outward_normal(e, point);
         if (hit.inside) normal = -normal;  // seen from inside: face the viewer
-        const V to_viewer = normalize(-direction);
-
         // The terms are multiplied in the order the handout writes them: Ka*Ia*O, Kd*Ip*(N.L)*O
         // and Ks*Ip*(R.V)^n; a different order moves a few pixels across a truncation step.
         V colour = (ambient_ * e.ka) * e.colour;
-        for (const PointLight<Real>& light : lights_) {
+
+        // Shortcuts that change no output byte (each term skipped is exactly zero, and
+        // adding zero changes at most the sign of a zero channel, which prints as 0):
+        // - with Ks = 0 the specular term is zero (pow is finite here: R.V <= 1 + a few
+        //   ulps and 0 <= n <= 1e6), so pow() is not called;
+        // - with Kd = 0 as well no light adds anything: no shadow ray at all;
+        // - a light behind the surface (N.L <= 0) adds nothing whether or not it is
+        //   blocked, so its shadow ray is cast only after that test (half the lights);
+        // - V (to the viewer) is needed only for a specular term.
+        const bool no_specular = e.ks == 0 && e.shininess >= 0 && e.shininess <= Real(1e6);
+        const bool no_lighting = no_specular && e.kd == 0;
+        bool have_to_viewer = false;
+        V to_viewer;
+        for (std::size_t li = 0; li < lights_.size() && !no_lighting; ++li) {
+            const PointLight<Real>& light = lights_[li];
             const V to_light = light.position - point;
-            if (in_shadow(point, to_light)) continue;
             const V l = normalize(to_light);
             const Real n_dot_l = dot(normal, l);
             if (!(n_dot_l > 0)) continue;
+            if (in_shadow(point, to_light, li, scratch)) continue;
             colour += ((light.intensity * e.kd) * n_dot_l) * e.colour;
+            if (no_specular) continue;
+            if (!have_to_viewer) to_viewer = normalize(-direction), have_to_viewer = true;
             const V reflected_light = normal * (2 * n_dot_l) - l;
             const Real r_dot_v = dot(reflected_light, to_viewer);
             if (r_dot_v > 0) {
@@ -113,14 +301,24 @@ private:
 
         if (e.kr > 0 && reflections_left > 0) {
             const V mirrored = direction - normal * (2 * dot(normal, direction));
+            bounds_.prepare(point, scratch.origin);
             // A reflected ray that hits nothing returns black, unlike an eye ray.
-            colour += trace(point, mirrored, Real(kReflectedRayMinT), reflections_left - 1, V{}) * e.kr;
+            colour += trace(point, scratch.origin, mirrored, Real(kReflectedRayMinT), reflections_left - 1,
+                            V{}, scratch) *
+                      e.kr;
         }
         return colour;
     }
 
     std::vector<Ellipsoid<Real>> ellipsoids_;
     std::vector<PointLight<Real>> lights_;
+    SphereBounds<Real> bounds_;
+    typename SphereBounds<Real>::OriginTerms eye_terms_;
+    bool use_grids_ = false;
+    Enclosures<Real> enclosures_;
+    ShadowPrefilter<Real> prefilter_;
+    bool accelerate_ = true;
+    std::vector<DirectionGrid<C>> light_grids_;
     V ambient_;
     V background_;
 };

@@ -1,0 +1,257 @@
+// benchmark: the figures of issue 5, measured on whole processes as a user runs them.
+//   (a) each course scene at 400x400 against `floor`, a program that only starts and
+//       writes a 400x400 P6: wall time min/median/max and median ratio (target <= 1.5);
+//   (b) the heavy scene at 400x400 against `baseline_tracer`, the simplest correct
+//       tracer: median ratio (target >= 20), and how many pixels their images differ in;
+//   (c) 3840x2160 and 7680x4320 renders of the course scenes and the heavy scene, in
+//       Mrays/s (eye rays, i.e. pixels, per second of wall time) and as ratios to the
+//       baseline's rate (measured at 3840x2160; it has no per-image set-up, so its rate
+//       does not depend on the size).
+// Programs run interleaved (floor, scene, scene, ..., floor, ...) so that load on the
+// machine falls on all of them alike. It never fails on timing: it reports.
+//
+// usage: benchmark --raytracer EXE --baseline EXE --floor EXE --course DIR --heavy FILE
+//                  [--quick] [--runs N]
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "raytracer/image.h"
+#include "raytracer/ppm.h"
+
+#ifdef _WIN32
+#include <process.h>
+#else
+#include <spawn.h>
+#include <sys/wait.h>
+extern char** environ;
+#endif
+
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+// Runs a program and waits for it; returns the wall time in seconds, or -1 on failure.
+double run(const std::vector<std::string>& argv) {
+    std::vector<char*> args;
+    for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+    args.push_back(nullptr);
+    const auto start = Clock::now();
+#ifdef _WIN32
+    const intptr_t status = _spawnv(_P_WAIT, args[0], args.data());
+    const bool ok = status == 0;
+#else
+    pid_t pid = 0;
+    bool ok = posix_spawn(&pid, args[0], nullptr, nullptr, args.data(), environ) == 0;
+    int status = 0;
+    ok = ok && waitpid(pid, &status, 0) == pid && WIFEXITED(status) && WEXITSTATUS(status) == 0;
+#endif
+    const std::chrono::duration<double> took = Clock::now() - start;
+    return ok ? took.count() : -1;
+}
+
+struct Stats {
+    std::vector<double> samples;
+    double min() const { return *std::min_element(samples.begin(), samples.end()); }
+    double max() const { return *std::max_element(samples.begin(), samples.end()); }
+    double median() const {
+        std::vector<double> s = samples;
+        std::sort(s.begin(), s.end());
+        const std::size_t n = s.size();
+        return n % 2 ? s[n / 2] : (s[n / 2 - 1] + s[n / 2]) / 2;
+    }
+};
+
+// The scene file with RES and OUTPUT replaced; tokens are whitespace-separated and
+// keywords may come in any order (SPEC section 2).
+std::string rewrite(const fs::path& scene, int columns, int rows, const fs::path& output) {
+    std::ifstream in(scene);
+    std::vector<std::string> tokens{std::istream_iterator<std::string>(in),
+                                    std::istream_iterator<std::string>()};
+    std::ostringstream out;
+    for (std::size_t i = 0; i < tokens.size(); ++i) {
+        const std::string& t = tokens[i];
+        if (t == "RES" && i + 2 < tokens.size()) {
+            out << "\nRES " << columns << ' ' << rows;
+            i += 2;
+        } else if (t == "OUTPUT" && i + 1 < tokens.size()) {
+            out << "\nOUTPUT " << output.string();
+            i += 1;
+        } else {
+            const bool keyword = t == "NEAR" || t == "LEFT" || t == "RIGHT" || t == "BOTTOM" || t == "TOP" ||
+                                 t == "SPHERE" || t == "LIGHT" || t == "BACK" || t == "AMBIENT";
+            out << (keyword ? "\n" : " ") << t;
+        }
+    }
+    out << '\n';
+    return out.str();
+}
+
+struct Variant {
+    std::string name;
+    fs::path scene, image;
+};
+
+Variant make_variant(const fs::path& dir, const fs::path& scene, int columns, int rows) {
+    const std::string name = scene.stem().string();
+    const std::string tag = name + "-" + std::to_string(columns) + "x" + std::to_string(rows);
+    Variant v{name, dir / (tag + ".txt"), dir / (tag + ".ppm")};
+    std::ofstream(v.scene) << rewrite(scene, columns, rows, v.image);
+    return v;
+}
+
+void print_row(const std::string& name, const Stats& s, const std::string& tail) {
+    std::printf("  %-18s %8.2f %8.2f %8.2f  %s\n", name.c_str(), s.min() * 1e3, s.median() * 1e3,
+                s.max() * 1e3, tail.c_str());
+}
+
+std::string format(const char* f, double x) {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, f, x);
+    return buffer;
+}
+
+int usage() {
+    std::fprintf(stderr,
+                 "usage: benchmark --raytracer EXE --baseline EXE --floor EXE --course DIR --heavy FILE "
+                 "[--quick] [--runs N]\n");
+    return 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::map<std::string, std::string> opt;
+    bool quick = false;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        if (a == "--quick") {
+            quick = true;
+        } else if (a.rfind("--", 0) == 0 && i + 1 < argc) {
+            opt[a.substr(2)] = argv[++i];
+        } else {
+            return usage();
+        }
+    }
+    for (const char* required : {"raytracer", "baseline", "floor", "course", "heavy"})
+        if (opt.count(required) == 0) return usage();
+    const fs::path raytracer = fs::absolute(opt["raytracer"]), baseline = fs::absolute(opt["baseline"]);
+    const fs::path floor_exe = fs::absolute(opt["floor"]);
+    const int runs = opt.count("runs") ? std::max(1, std::atoi(opt["runs"].c_str())) : (quick ? 3 : 11);
+
+    std::vector<fs::path> course;
+    const fs::path scenes_dir = fs::path(opt["course"]) / "scenes";
+    if (fs::is_directory(scenes_dir))
+        for (const auto& entry : fs::directory_iterator(scenes_dir))
+            if (entry.path().extension() == ".txt") course.push_back(entry.path());
+    std::sort(course.begin(), course.end());
+    const fs::path heavy = opt["heavy"];
+
+    const fs::path dir = fs::temp_directory_path() /
+                         ("raytracer-bench-" + std::to_string(Clock::now().time_since_epoch().count()));
+    fs::create_directories(dir);
+    bool failed = false;
+    auto time_it = [&](const std::vector<std::string>& argv_) {
+        const double t = run(argv_);
+        if (t < 0) {
+            std::fprintf(stderr, "benchmark: '%s %s' failed\n", argv_[0].c_str(), argv_.back().c_str());
+            failed = true;
+        }
+        return t < 0 ? 0.0 : t;
+    };
+
+    std::printf("raytracer benchmark%s: %d runs, wall times in ms (min median max)\n",
+                quick ? " (quick)" : "", runs);
+
+    // (a) Course scenes at 400x400 against the floor.
+    std::printf("\n(a) course scenes at 400x400, whole process, against floor (target: ratio <= 1.5)\n");
+    std::vector<Variant> small;
+    for (const fs::path& s : course) small.push_back(make_variant(dir, s, 400, 400));
+    Stats floor_stats;
+    std::vector<Stats> small_stats(small.size());
+    const std::string floor_image = (dir / "floor.ppm").string();
+    for (int r = 0; r < runs; ++r)
+        for (std::size_t i = 0; i < small.size(); ++i) {
+            floor_stats.samples.push_back(time_it({floor_exe.string(), floor_image}));
+            small_stats[i].samples.push_back(time_it({raytracer.string(), small[i].scene.string()}));
+        }
+    print_row("floor", floor_stats, "");
+    double worst = 0;
+    for (std::size_t i = 0; i < small.size(); ++i) {
+        const double ratio = small_stats[i].median() / floor_stats.median();
+        worst = std::max(worst, ratio);
+        print_row(small[i].name, small_stats[i], format("ratio %.2f", ratio));
+    }
+    if (!small.empty()) std::printf("  worst ratio %.2f: %s\n", worst, worst <= 1.5 ? "met" : "NOT met");
+
+    // (b) The heavy scene at 400x400 against the baseline.
+    std::printf("\n(b) heavy scene at 400x400 against baseline_tracer (target: ratio >= 20)\n");
+    const Variant h = make_variant(dir, heavy, 400, 400);
+    const Variant hb{h.name, dir / "heavy-baseline.txt", dir / "heavy-baseline.ppm"};
+    std::ofstream(hb.scene) << rewrite(heavy, 400, 400, hb.image);
+    Stats ours, theirs;
+    const int heavy_runs = quick ? 1 : std::max(3, runs / 2);
+    for (int r = 0; r < heavy_runs; ++r) {
+        theirs.samples.push_back(time_it({baseline.string(), hb.scene.string()}));
+        ours.samples.push_back(time_it({raytracer.string(), h.scene.string()}));
+    }
+    print_row("baseline_tracer", theirs, "");
+    const double heavy_ratio = theirs.median() / ours.median();
+    print_row("raytracer.exe", ours,
+              format("ratio %.1f", heavy_ratio) + (heavy_ratio >= 20 ? ": met" : ": NOT met"));
+    rt::Image a, b;
+    std::string error;
+    if (rt::read_ppm(h.image.string(), a, error) && rt::read_ppm(hb.image.string(), b, error)) {
+        const rt::ImageDiff d = rt::compare_images(a, b);
+        std::printf("  images: %lld pixels differ, by at most %d levels\n", d.differing_pixels,
+                    d.largest_difference);
+    } else {
+        std::printf("  images: cannot compare: %s\n", error.c_str());
+    }
+
+    // (c) Large renders.
+    std::printf(
+        "\n(c) large renders: Mrays/s (eye rays per second, wall) and ratio to the baseline's rate\n");
+    std::vector<std::pair<int, int>> sizes{{3840, 2160}, {7680, 4320}};
+    std::vector<fs::path> large_scenes = course;
+    if (quick) {
+        sizes = {{960, 540}};
+        large_scenes.resize(std::min<std::size_t>(2, large_scenes.size()));
+    }
+    large_scenes.push_back(heavy);
+    const int large_runs = quick ? 1 : 3;
+    for (const fs::path& s : large_scenes) {
+        // The baseline's rate, at the first size.
+        const Variant vb = make_variant(dir, s, sizes[0].first, sizes[0].second);
+        const double pixels0 = double(sizes[0].first) * sizes[0].second;
+        const double base_rate = pixels0 / time_it({baseline.string(), vb.scene.string()}) / 1e6;
+        std::printf("  %-18s baseline %7.2f Mrays/s", vb.name.c_str(), base_rate);
+        for (const auto& size : sizes) {
+            const Variant v = make_variant(dir, s, size.first, size.second);
+            Stats t;
+            // One run of the heavy scene: a minute or more at 7680x4320.
+            const int n = s == heavy ? 1 : large_runs;
+            for (int r = 0; r < n; ++r) t.samples.push_back(time_it({raytracer.string(), v.scene.string()}));
+            const double rate = double(size.first) * size.second / t.median() / 1e6;
+            std::printf(" | %dx%d %7.2f Mrays/s (x%.1f)", size.first, size.second, rate, rate / base_rate);
+            std::error_code ignored;
+            fs::remove(v.image, ignored);
+        }
+        std::printf("\n");
+        std::error_code ignored;
+        fs::remove(vb.image, ignored);
+    }
+
+    std::error_code ignored;
+    fs::remove_all(dir, ignored);
+    return failed ? 1 : 0;
+}
