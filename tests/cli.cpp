@@ -145,7 +145,7 @@ TEST(help_prints_usage_on_stdout_and_exits_0) {
     for (const char* option : {"--help", "-h"}) {
         const Run r = run(folder, option);
         CHECK_EQ(r.status, 0);
-        CHECK(contains(r.out, "usage: raytracer.exe <scene-file>\n"));
+        CHECK(contains(r.out, "usage: raytracer.exe [--threads N] <scene-file>\n"));
         CHECK(contains(r.out, "SPHERE name x y z sx sy sz r g b Ka Kd Ks Kr n"));
         CHECK(contains(r.out, "Exit status: 0 written; 1 bad scene file; 2 bad command line;"));
         CHECK_EQ(r.err, std::string());
