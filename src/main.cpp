@@ -67,8 +67,9 @@ int main(int argc, char** argv) {
         char* end = nullptr;
         const unsigned long n = argc >= 3 ? std::strtoul(argv[2], &end, 10) : 0;
         if (argc < 3 || end == argv[2] || *end != '\0' || n == 0 || n > 1024 || argv[2][0] == '-') {
-            std::fprintf(stderr,
-                         "raytracer.exe: error: --threads, expected a whole number from 1 to 1024 (see --help)\n");
+            std::fprintf(
+                stderr,
+                "raytracer.exe: error: --threads, expected a whole number from 1 to 1024 (see --help)\n");
             return kBadUsage;
         }
         threads = static_cast<unsigned>(n);
