@@ -17,10 +17,7 @@
 #include "raytracer/image.h"
 #include "raytracer/ppm.h"
 #include "raytracer/version.h"
-
-#ifndef _WIN32
-#include <sys/wait.h>
-#endif
+#include "run_program.h"
 
 #ifndef RAYTRACER_EXE
 #error "RAYTRACER_EXE must name the raytracer.exe under test"
@@ -30,21 +27,24 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A fresh, empty folder per test, removed afterwards.
+// A fresh, empty working folder per test, inside a root of its own that also holds
+// the captured output; both removed afterwards.
 class Scratch {
 public:
     Scratch() {
         std::random_device random;
-        path_ = fs::temp_directory_path() / ("raytracer-cli-" + std::to_string(random()));
+        root_ = fs::temp_directory_path() / ("raytracer-cli-" + std::to_string(random()));
+        path_ = root_ / "work";
         fs::create_directories(path_);
     }
     Scratch(const Scratch&) = delete;
     Scratch& operator=(const Scratch&) = delete;
     ~Scratch() {
         std::error_code ignored;
-        fs::remove_all(path_, ignored);
+        fs::remove_all(root_, ignored);
     }
     [[nodiscard]] const fs::path& path() const { return path_; }
+    [[nodiscard]] const fs::path& root() const { return root_; }
     [[nodiscard]] fs::path operator/(const std::string& name) const { return path_ / name; }
 
     // The names in the folder, sorted, separated by spaces.
@@ -59,19 +59,8 @@ public:
     }
 
 private:
-    fs::path path_;
+    fs::path root_, path_;
 };
-
-struct Run {
-    int status = -1;
-    std::string out;
-    std::string err;
-};
-
-std::string read_text(const fs::path& file) {
-    std::ifstream in(file);  // text mode: "\r\n" written by a Windows program reads as "\n"
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 std::string read_bytes(const fs::path& file) {
     std::ifstream in(file, std::ios::binary);
@@ -83,33 +72,15 @@ void write_bytes(const fs::path& file, const std::string& bytes) {
     out << bytes;
 }
 
-// Runs raytracer.exe with the arguments (already quoted as needed) in the folder, its
-// stdout and stderr captured in files outside it. Returns the program's exit status.
-Run run(const Scratch& folder, const std::string& arguments) {
-    const fs::path out = folder.path().parent_path() / (folder.path().filename().string() + ".out");
-    const fs::path err = folder.path().parent_path() / (folder.path().filename().string() + ".err");
-    std::string command = "\"" + fs::path(RAYTRACER_EXE).string() + "\"" + (arguments.empty() ? "" : " ") +
-                          arguments + " >\"" + out.string() + "\" 2>\"" + err.string() + "\"";
-#ifdef _WIN32
-    command = "\"" + command + "\"";  // cmd.exe strips one outer pair of quotes
-#endif
-    const fs::path previous = fs::current_path();
-    fs::current_path(folder.path());
-    const int status = std::system(command.c_str());
-    fs::current_path(previous);
+using Run = run_program::Result;
 
-    Run result;
-#ifdef _WIN32
-    result.status = status;  // cmd.exe's exit code, which is the program's
-#else
-    result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-#endif
-    result.out = read_text(out);
-    result.err = read_text(err);
-    std::error_code ignored;
-    fs::remove(out, ignored);
-    fs::remove(err, ignored);
-    return result;
+// Runs raytracer.exe with these arguments in the folder, as a grading script does.
+// Its output is read as text: a Windows program's "\r\n" counts as "\n".
+Run run(const Scratch& folder, const std::vector<std::string>& arguments) {
+    Run r = run_program::run(RAYTRACER_EXE, arguments, folder.path(), folder.root());
+    for (std::string* text : {&r.out, &r.err})
+        text->erase(std::remove(text->begin(), text->end(), '\r'), text->end());
+    return r;
 }
 
 bool contains(const std::string& text, const std::string& part) {
@@ -143,7 +114,7 @@ void check_is_background_image(const fs::path& file) {
 TEST(help_prints_usage_on_stdout_and_exits_0) {
     const Scratch folder;
     for (const char* option : {"--help", "-h"}) {
-        const Run r = run(folder, option);
+        const Run r = run(folder, {option});
         CHECK_EQ(r.status, 0);
         CHECK(contains(r.out, "usage: raytracer.exe [--threads N] <scene-file>\n"));
         CHECK(contains(r.out, "SPHERE name x y z sx sy sz r g b Ka Kd Ks Kr n"));
@@ -155,7 +126,7 @@ TEST(help_prints_usage_on_stdout_and_exits_0) {
 
 TEST(version_prints_the_version_and_exits_0) {
     const Scratch folder;
-    const Run r = run(folder, "--version");
+    const Run r = run(folder, {"--version"});
     CHECK_EQ(r.status, 0);
     CHECK_EQ(r.out, std::string("raytracer.exe ") + rt::kVersion + "\n");
     CHECK_EQ(r.err, std::string());
@@ -164,7 +135,9 @@ TEST(version_prints_the_version_and_exits_0) {
 // One line on stderr that points at --help (graders collect stderr line by line).
 TEST(a_wrong_command_line_exits_2_with_one_line_on_stderr) {
     const Scratch folder;
-    for (const char* arguments : {"", "a.txt b.txt", "--version extra", "\"\""}) {
+    const std::vector<std::vector<std::string>> wrong = {
+        {}, {"a.txt", "b.txt"}, {"--version", "extra"}, {""}};
+    for (const std::vector<std::string>& arguments : wrong) {
         const Run r = run(folder, arguments);
         CHECK_EQ(r.status, 2);
         CHECK_EQ(r.out, std::string());
@@ -177,7 +150,7 @@ TEST(a_wrong_command_line_exits_2_with_one_line_on_stderr) {
 TEST(a_scene_renders_silently_to_its_output_file) {
     const Scratch folder;
     write_bytes(folder / "scene.txt", empty_scene("picture.ppm"));
-    const Run r = run(folder, "scene.txt");
+    const Run r = run(folder, {"scene.txt"});
     CHECK_EQ(r.status, 0);
     CHECK_EQ(r.out, std::string());
     CHECK_EQ(r.err, std::string());
@@ -191,7 +164,7 @@ TEST(an_existing_output_file_is_replaced_whole) {
     // Longer than the new image, so a write in place without truncation would show.
     write_bytes(folder / "picture.ppm", std::string(1000, 'x'));
     for (int pass = 0; pass < 2; ++pass) {  // replacing the program's own output as well
-        const Run r = run(folder, "scene.txt");
+        const Run r = run(folder, {"scene.txt"});
         CHECK_EQ(r.status, 0);
         CHECK_EQ(r.err, std::string());
         check_is_background_image(folder / "picture.ppm");
@@ -205,7 +178,7 @@ TEST(a_bad_scene_exits_1_and_leaves_an_existing_output_alone) {
     const Scratch folder;
     write_bytes(folder / "bad.txt", empty_scene("picture.ppm") + "CUBE 1 2 3\n");
     write_bytes(folder / "picture.ppm", "old");
-    const Run r = run(folder, "bad.txt");
+    const Run r = run(folder, {"bad.txt"});
     CHECK_EQ(r.status, 1);
     CHECK_EQ(r.out, std::string());
     CHECK(contains(r.err, "bad.txt"));
@@ -216,7 +189,7 @@ TEST(a_bad_scene_exits_1_and_leaves_an_existing_output_alone) {
 
 TEST(a_missing_scene_file_exits_1) {
     const Scratch folder;
-    const Run r = run(folder, "no-such-scene.txt");
+    const Run r = run(folder, {"no-such-scene.txt"});
     CHECK_EQ(r.status, 1);
     CHECK(contains(r.err, "no-such-scene.txt"));
     CHECK(folder.names().empty());
@@ -225,7 +198,7 @@ TEST(a_missing_scene_file_exits_1) {
 TEST(an_unwritable_output_exits_3_and_writes_nothing) {
     const Scratch folder;
     write_bytes(folder / "scene.txt", empty_scene("missing-folder/picture.ppm"));
-    const Run r = run(folder, "scene.txt");
+    const Run r = run(folder, {"scene.txt"});
     CHECK_EQ(r.status, 3);
     CHECK(contains(r.err, "missing-folder/picture.ppm"));
     CHECK_EQ(folder.names(), std::string("scene.txt"));
