@@ -32,7 +32,7 @@
 #else
 #include <spawn.h>
 #include <sys/wait.h>
-extern char** environ;
+extern char** environ;  // NOLINT(readability-redundant-declaration): POSIX asks programs to declare it
 #endif
 
 namespace {
@@ -43,6 +43,7 @@ using Clock = std::chrono::steady_clock;
 // Runs a program and waits for it; returns the wall time in seconds, or -1 on failure.
 double run(const std::vector<std::string>& argv) {
     std::vector<char*> args;
+    args.reserve(argv.size() + 1);
     for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
     args.push_back(nullptr);
     const auto start = Clock::now();
@@ -175,6 +176,7 @@ int main(int argc, char** argv) {
     // (a) Course scenes at 400x400 against the floor.
     std::printf("\n(a) course scenes at 400x400, whole process, against floor (target: ratio <= 1.5)\n");
     std::vector<Variant> small;
+    small.reserve(course.size());
     for (const fs::path& s : course) small.push_back(make_variant(dir, s, 400, 400));
     Stats floor_stats;
     std::vector<Stats> small_stats(small.size());

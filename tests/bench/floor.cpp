@@ -8,7 +8,7 @@
 int main(int argc, char** argv) {
     if (argc != 2) return 2;
     const char header[] = "P6\n400 400\n255\n";
-    const std::size_t header_size = sizeof header - 1, pixels = 400 * 400 * 3;
+    const std::size_t header_size = sizeof header - 1, pixels = std::size_t{400} * 400 * 3;
     std::vector<unsigned char> file(header_size + pixels, 127);
     std::memcpy(file.data(), header, header_size);
     std::FILE* out = std::fopen(argv[1], "wb");

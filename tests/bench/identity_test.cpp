@@ -44,7 +44,9 @@ std::vector<std::pair<std::string, rt::Scene>> file_scenes(int columns, int rows
 
 // Uniform in [lo, hi) from the raw generator output: the same numbers on every
 // platform (std::uniform_real_distribution is not specified bit for bit).
-double uniform(std::mt19937& g, double lo, double hi) { return lo + (hi - lo) * (g() / 4294967296.0); }
+double uniform(std::mt19937& g, double lo, double hi) {
+    return lo + (hi - lo) * (static_cast<double>(g()) / 4294967296.0);
+}
 
 rt::Scene random_scene(unsigned seed) {
     std::mt19937 g(seed);
@@ -123,7 +125,7 @@ TEST(random_scenes_match_the_plain_tracer) {
 TEST(any_thread_count_gives_the_same_bytes) {
     for (const auto& [name, scene] : file_scenes(97, 61)) {
         const rt::Image one = rt::render<double>(scene, 1);
-        for (unsigned threads : {2u, 3u, 5u, 16u, 64u, 200u}) {
+        for (unsigned threads : {2U, 3U, 5U, 16U, 64U, 200U}) {
             const bool same = rt::render<double>(scene, threads).rgb == one.rgb;
             if (!same) std::cerr << name << ": " << threads << " threads differ from 1\n";
             CHECK(same);
