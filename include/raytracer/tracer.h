@@ -209,8 +209,10 @@ private:
         for (const PointLight<Real>& l : lights_) grow(C(l.position.x), C(l.position.y), C(l.position.z), 0);
         use_grids_ = bounds_.guards(lo, hi);
         if (!use_grids_) return;
+        const auto cones = DirectionGrid<C>::cell_cones(kGridCells);
         for (const PointLight<Real>& l : lights_)
-            light_grids_.emplace_back(C(l.position.x), C(l.position.y), C(l.position.z), spheres, kGridCells);
+            light_grids_.emplace_back(C(l.position.x), C(l.position.y), C(l.position.z), spheres, kGridCells,
+                                      cones);
     }
 
     // The nearest hit among the ellipsoids [first, last), given in increasing order so
