@@ -153,10 +153,11 @@ public:
     // The direction is light - point, not normalised, so the light is at t = 1.
     // Any blocker will do, so the search stops at the first; it tries first the one that
     // blocked this light last on this thread (neighbouring pixels share their shadows).
-    bool in_shadow(const V& point, const V& to_light, std::size_t light_index,
-                   TraceScratch<Real>& scratch) const {
+    // Ellipsoid number skip (kNone for none) is not tried: the caller knows it cannot block.
+    bool in_shadow(const V& point, const V& to_light, std::size_t light_index, TraceScratch<Real>& scratch,
+                   std::uint32_t skip = TraceScratch<Real>::kNone) const {
         const std::uint32_t last = scratch.last_occluder[light_index];
-        if (last != TraceScratch<Real>::kNone && blocks(last, point, to_light)) return true;
+        if (last != TraceScratch<Real>::kNone && last != skip && blocks(last, point, to_light)) return true;
         const std::uint32_t* first;
         const std::uint32_t* end;
         if (use_grids_) {
@@ -164,14 +165,11 @@ public:
             const DirectionGrid<C>& grid = light_grids_[light_index];
             first = grid.list(C(point.x) - grid.x(), C(point.y) - grid.y(), C(point.z) - grid.z(), &end);
         } else {
-            bounds_.prepare(point, scratch.origin);
-            first = scratch.candidates.data();
-            end = first + bounds_.shadow_candidates(scratch.origin, to_light, light_index,
-                                                    scratch.candidates.data(), scratch.cull.data());
+            first = shadow_candidates(point, to_light, light_index, scratch, &end);
         }
         for (; first != end; ++first) {
             const std::uint32_t i = *first;
-            if (i == last || enclosures_.contains_segment(point, light_index, i)) continue;
+            if (i == last || i == skip || enclosures_.contains_segment(point, light_index, i)) continue;
             if (blocks(i, point, to_light)) {
                 scratch.last_occluder[light_index] = i;
                 return true;
@@ -191,6 +189,8 @@ public:
 private:
     // Cells per cube-face side of the light buffers (direction_grid.h).
     static constexpr int kGridCells = 16;
+    // The rounding allowance on N.L of the self-shadow test in shade().
+    static constexpr Real kSelfSlack = Real(32) * std::numeric_limits<Real>::epsilon();
 
     void build_grids() {
         // The box of everything a ray can start from or go to: the ellipsoids' spheres,
@@ -213,6 +213,16 @@ private:
         for (const PointLight<Real>& l : lights_)
             light_grids_.emplace_back(C(l.position.x), C(l.position.y), C(l.position.z), spheres, kGridCells,
                                       cones);
+    }
+
+    // Without light buffers: the ellipsoids whose bounding spheres the shadow ray may meet.
+    const std::uint32_t* shadow_candidates(const V& point, const V& to_light, std::size_t light_index,
+                                           TraceScratch<Real>& scratch, const std::uint32_t** end) const {
+        bounds_.prepare(point, scratch.origin);
+        const std::uint32_t* first = scratch.candidates.data();
+        *end = first + bounds_.shadow_candidates(scratch.origin, to_light, light_index,
+                                                 scratch.candidates.data(), scratch.cull.data());
+        return first;
     }
 
     // The nearest hit among the ellipsoids [first, last), given in increasing order so
@@ -265,7 +275,11 @@ private:
         const Ellipsoid<Real>& e = *hit.ellipsoid;
 
         const V point = origin + direction * hit.t;
-        V normal = outward_normal(e, point);
+        // outward_normal(e, point), operation for operation, keeping |(P - C) / s^2|.
+        const V to_centre = point - e.centre;
+        const V scaled = to_centre / e.scale_squared;
+        const Real scaled_length = length(scaled);
+        V normal = scaled * (Real(1) / scaled_length);
         if (hit.inside) normal = -normal;  // seen from inside: face the viewer
         // The terms are multiplied in the order the handout writes them: Ka*Ia*O, Kd*Ip*(N.L)*O
         // and Ks*Ip*(R.V)^n; a different order moves a few pixels across a truncation step.
@@ -283,13 +297,33 @@ private:
         const bool no_lighting = no_specular && e.kd == 0;
         bool have_to_viewer = false;
         V to_viewer;
+        // The shadow ray from a point of an ellipsoid, seen from outside, towards a light
+        // in front (N.L > 0) leaves it at once, and the ellipsoid is convex: intersect()
+        // finds a root below 0 and one within |c| / b of 0, where c = o'.o' - 1 (0 but for
+        // rounding; computed here as intersect() computes it) and b = o'.d' >=
+        // |(P - C)/s^2| |L - P| (N.L - 32 eps) (Cauchy-Schwarz on the rounding of each
+        // factor). Where that bound exceeds 2000 |c|, neither root is in (0.001, 1) and the
+        // ellipsoid is not tried.
+        Real self_c = 0;
+        bool self_test = !hit.inside && !no_lighting;
+        if (self_test) {
+            using std::abs;
+            const V o = to_centre / e.scale;  // as in intersect(): (origin - centre) / scale
+            self_c = abs(dot(o, o) - Real(1));
+            self_test = self_c == self_c;
+        }
+        const auto self = static_cast<std::uint32_t>(&e - ellipsoids_.data());
         for (std::size_t li = 0; li < lights_.size() && !no_lighting; ++li) {
             const PointLight<Real>& light = lights_[li];
             const V to_light = light.position - point;
-            const V l = normalize(to_light);
+            const Real light_distance = length(to_light);
+            const V l = to_light * (Real(1) / light_distance);  // normalize(to_light)
             const Real n_dot_l = dot(normal, l);
             if (!(n_dot_l > 0)) continue;
-            if (in_shadow(point, to_light, li, scratch)) continue;
+            const bool self_clear =
+                self_test && scaled_length * light_distance * (n_dot_l - kSelfSlack) > Real(2000) * self_c;
+            if (in_shadow(point, to_light, li, scratch, self_clear ? self : TraceScratch<Real>::kNone))
+                continue;
             colour += ((light.intensity * e.kd) * n_dot_l) * e.colour;
             if (no_specular) continue;
             if (!have_to_viewer) to_viewer = normalize(-direction), have_to_viewer = true;
