@@ -19,6 +19,16 @@
 #include "raytracer/sphere_bounds.h"
 #include "raytracer/vec3.h"
 
+// Forces inlining where GCC's heuristics flip with unrelated edits (measured: the
+// shadow test called out of line costs the heavy scene 4 % more instructions).
+#if defined(__GNUC__) || defined(__clang__)
+#define RT_ALWAYS_INLINE __attribute__((always_inline)) inline
+#elif defined(_MSC_VER)
+#define RT_ALWAYS_INLINE __forceinline
+#else
+#define RT_ALWAYS_INLINE inline
+#endif
+
 namespace rt {
 
 // Epsilons and limits that the course keys fix (SPEC sections 3 and 5).
@@ -63,6 +73,11 @@ public:
             lights_.push_back({V::from(l.position), V::from(l.intensity)});
             light_positions.push_back(V::from(l.position));
         }
+        // Per ellipsoid and light, Ip*Kd and Ip*Ks: the first products of the handout's
+        // terms, computed once instead of per hit (the same operations, so the same bits).
+        for (const Ellipsoid<Real>& e : ellipsoids_)
+            for (const PointLight<Real>& l : lights_)
+                light_terms_.push_back({l.intensity * e.kd, l.intensity * e.ks});
         bounds_ = SphereBounds<Real>(ellipsoids_, light_positions, accelerate);
         bounds_.prepare(V{}, eye_terms_);  // every eye ray starts at the camera
         accelerate_ = accelerate;
@@ -154,8 +169,9 @@ public:
     // Any blocker will do, so the search stops at the first; it tries first the one that
     // blocked this light last on this thread (neighbouring pixels share their shadows).
     // Ellipsoid number skip (kNone for none) is not tried: the caller knows it cannot block.
-    bool in_shadow(const V& point, const V& to_light, std::size_t light_index, TraceScratch<Real>& scratch,
-                   std::uint32_t skip = TraceScratch<Real>::kNone) const {
+    RT_ALWAYS_INLINE bool in_shadow(const V& point, const V& to_light, std::size_t light_index,
+                                    TraceScratch<Real>& scratch,
+                                    std::uint32_t skip = TraceScratch<Real>::kNone) const {
         const std::uint32_t last = scratch.last_occluder[light_index];
         if (last != TraceScratch<Real>::kNone && last != skip && blocks(last, point, to_light)) return true;
         const std::uint32_t* first;
@@ -274,13 +290,6 @@ private:
             TraceScratch<Real>& scratch) const {
         const Ellipsoid<Real>& e = *hit.ellipsoid;
 
-        const V point = origin + direction * hit.t;
-        // outward_normal(e, point), operation for operation, keeping |(P - C) / s^2|.
-        const V to_centre = point - e.centre;
-        const V scaled = to_centre / e.scale_squared;
-        const Real scaled_length = length(scaled);
-        V normal = scaled * (Real(1) / scaled_length);
-        if (hit.inside) normal = -normal;  // seen from inside: face the viewer
         // The terms are multiplied in the order the handout writes them: Ka*Ia*O, Kd*Ip*(N.L)*O
         // and Ks*Ip*(R.V)^n; a different order moves a few pixels across a truncation step.
         V colour = (ambient_ * e.ka) * e.colour;
@@ -295,6 +304,16 @@ private:
         // - V (to the viewer) is needed only for a specular term.
         const bool no_specular = e.ks == 0 && e.shininess >= 0 && e.shininess <= Real(1e6);
         const bool no_lighting = no_specular && e.kd == 0;
+        const bool reflects = e.kr > 0 && reflections_left > 0;
+        if (no_lighting && !reflects) return colour;  // neither the point nor its normal is needed
+
+        const V point = origin + direction * hit.t;
+        // outward_normal(e, point), operation for operation, keeping |(P - C) / s^2|.
+        const V to_centre = point - e.centre;
+        const V scaled = to_centre / e.scale_squared;
+        const Real scaled_length = length(scaled);
+        V normal = scaled * (Real(1) / scaled_length);
+        if (hit.inside) normal = -normal;  // seen from inside: face the viewer
         bool have_to_viewer = false;
         V to_viewer;
         // The shadow ray from a point of an ellipsoid, seen from outside, towards a light
@@ -313,6 +332,7 @@ private:
             self_test = self_c == self_c;
         }
         const auto self = static_cast<std::uint32_t>(&e - ellipsoids_.data());
+        const LightTerms* terms = light_terms_.data() + std::size_t(self) * lights_.size();
         for (std::size_t li = 0; li < lights_.size() && !no_lighting; ++li) {
             const PointLight<Real>& light = lights_[li];
             const V to_light = light.position - point;
@@ -324,18 +344,18 @@ private:
                 self_test && scaled_length * light_distance * (n_dot_l - kSelfSlack) > Real(2000) * self_c;
             if (in_shadow(point, to_light, li, scratch, self_clear ? self : TraceScratch<Real>::kNone))
                 continue;
-            colour += ((light.intensity * e.kd) * n_dot_l) * e.colour;
+            colour += (terms[li].diffuse * n_dot_l) * e.colour;
             if (no_specular) continue;
             if (!have_to_viewer) to_viewer = normalize(-direction), have_to_viewer = true;
             const V reflected_light = normal * (2 * n_dot_l) - l;
             const Real r_dot_v = dot(reflected_light, to_viewer);
             if (r_dot_v > 0) {
                 using std::pow;
-                colour += (light.intensity * e.ks) * pow(r_dot_v, e.shininess);
+                colour += terms[li].specular * pow(r_dot_v, e.shininess);
             }
         }
 
-        if (e.kr > 0 && reflections_left > 0) {
+        if (reflects) {
             const V mirrored = direction - normal * (2 * dot(normal, direction));
             bounds_.prepare(point, scratch.origin);
             // A reflected ray that hits nothing returns black, unlike an eye ray.
@@ -348,6 +368,10 @@ private:
 
     std::vector<Ellipsoid<Real>> ellipsoids_;
     std::vector<PointLight<Real>> lights_;
+    struct LightTerms {
+        V diffuse, specular;  // Ip * Kd, Ip * Ks
+    };
+    std::vector<LightTerms> light_terms_;  // [ellipsoid * lights + light]
     SphereBounds<Real> bounds_;
     typename SphereBounds<Real>::OriginTerms eye_terms_;
     bool use_grids_ = false;
