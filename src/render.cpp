@@ -53,6 +53,12 @@ Image render(const Scene& scene, unsigned threads, bool accelerate) {
     std::vector<std::uint8_t> background_row(row_bytes);
     for (std::size_t i = 0; i < row_bytes; ++i) background_row[i] = background[i % 3];
 
+    // Each column's x on the near plane, computed once instead of per row (the same
+    // operations, so the same bits).
+    std::vector<Real> column_x(static_cast<std::size_t>(scene.columns));
+    for (int c = 0; c < scene.columns; ++c)
+        column_x[static_cast<std::size_t>(c)] = left + (right - left) * static_cast<Real>(c) / columns;
+
     auto render_rows = [&](int first_row, int end_row, TraceScratch<Real>& scratch, std::vector<Span>& in_row,
                            std::vector<std::uint32_t>& in_pixel) {
         for (int r = first_row; r < end_row; ++r) {
@@ -77,7 +83,7 @@ Image render(const Scene& scene, unsigned threads, bool accelerate) {
                 for (const Span& span : in_row)
                     if (span.first <= c && c <= span.last) in_pixel[count++] = span.ellipsoid;
                 if (count == 0) continue;  // the background, already there
-                const Real x = left + (right - left) * static_cast<Real>(c) / columns;
+                const Real x = column_x[static_cast<std::size_t>(c)];
                 const Vec3<Real> colour =
                     tracer.trace_eye_ray({x, y, near_z}, in_pixel.data(), in_pixel.data() + count, scratch);
                 std::uint8_t* out = row_out + static_cast<std::size_t>(c) * 3;

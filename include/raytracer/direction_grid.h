@@ -142,10 +142,12 @@ public:
         } else {
             face = dz > 0 ? 4 : 5, u = dx, v = dy, m = az;
         }
+        // One reciprocal for both coordinates: an ulp more rounding, far inside kAngleMargin.
+        const C scale = C(n_) / 2 / m;
         const std::size_t cell = (static_cast<std::size_t>(face) * static_cast<std::size_t>(n_) +
-                                  static_cast<std::size_t>(index(v / m))) *
+                                  static_cast<std::size_t>(index(v * scale + C(n_) / 2))) *
                                      static_cast<std::size_t>(n_) +
-                                 static_cast<std::size_t>(index(u / m));
+                                 static_cast<std::size_t>(index(u * scale + C(n_) / 2));
         *last = items_.data() + offsets_[cell + 1];
         return items_.data() + offsets_[cell];
     }
@@ -159,9 +161,9 @@ private:
     // test; small against a cell (2/n of a face).
     static constexpr double kAngleMargin = 1e-6;
 
-    // Cell index along one face axis of a coordinate in [-1, 1]; NaN gives 0.
-    int index(C w) const {
-        const C k = (w + 1) * C(n_) / 2;
+    // Cell index along one face axis of k = (w + 1) n / 2 for a coordinate w in [-1, 1];
+    // NaN gives 0.
+    int index(C k) const {
         if (!(k > 0)) return 0;
         return k >= C(n_) ? n_ - 1 : static_cast<int>(k);
     }
