@@ -80,6 +80,7 @@ public:
                 light_terms_.push_back({l.intensity * e.kd, l.intensity * e.ks});
         bounds_ = SphereBounds<Real>(ellipsoids_, light_positions, accelerate);
         bounds_.prepare(V{}, eye_terms_);  // every eye ray starts at the camera
+        for (const Ellipsoid<Real>& e : ellipsoids_) eye_origin_.push_back(mapped_origin(e, V{}));
         accelerate_ = accelerate;
         if (!accelerate) return;
         // Light buffers pay when there are more shadow rays than cells, and are not
@@ -109,7 +110,9 @@ public:
     // the renderer knows from screen_rects().
     V trace_eye_ray(const V& direction, const std::uint32_t* first, const std::uint32_t* last,
                     TraceScratch<Real>& scratch) const {
-        const Hit hit = closest(first, last, V{}, direction, Real(kEyeRayMinT));
+        const Hit hit = closest(first, last, Real(kEyeRayMinT), [&](std::uint32_t i) {
+            return intersect_mapped(ellipsoids_[i], eye_origin_[i], direction);
+        });
         return hit.ellipsoid == nullptr ? background_ : shade(hit, V{}, direction, kMaxReflections, scratch);
     }
 
@@ -245,6 +248,13 @@ private:
     // that ties resolve exactly as in a loop over all of them.
     Hit closest(const std::uint32_t* first, const std::uint32_t* last, const V& origin, const V& direction,
                 Real min_t) const {
+        return closest(first, last, min_t,
+                       [&](std::uint32_t i) { return intersect(ellipsoids_[i], origin, direction); });
+    }
+    // The same with intersect_of(i) giving the roots of ellipsoid i.
+    template <typename Intersect>
+    Hit closest(const std::uint32_t* first, const std::uint32_t* last, Real min_t,
+                Intersect intersect_of) const {
         // A root computed within a few ulps of min_t cannot be told from one at min_t, and
         // one at min_t is not visible (the hit must lie beyond it). This decides the eye
         // rays through the rim where the near plane cuts an ellipsoid: keyIllum's pixels
@@ -256,7 +266,7 @@ private:
         Hit best;
         for (; first != last; ++first) {
             const Ellipsoid<Real>& e = ellipsoids_[*first];
-            const Roots<Real> r = intersect(e, origin, direction);
+            const Roots<Real> r = intersect_of(*first);
             if (!r.hit) continue;
             const bool inside = !(r.near > min_t);
             const Real t = inside ? r.far : r.near;
@@ -374,6 +384,7 @@ private:
     std::vector<LightTerms> light_terms_;  // [ellipsoid * lights + light]
     SphereBounds<Real> bounds_;
     typename SphereBounds<Real>::OriginTerms eye_terms_;
+    std::vector<MappedOrigin<Real>> eye_origin_;  // per ellipsoid, of the camera
     bool use_grids_ = false;
     Enclosures<Real> enclosures_;
     ShadowPrefilter<Real> prefilter_;
