@@ -367,11 +367,14 @@ private:
 
         if (reflects) {
             const V mirrored = direction - normal * (2 * dot(normal, direction));
-            bounds_.prepare(point, scratch.origin);
+            const std::uint32_t* first = scratch.candidates.data();
+            const std::uint32_t* last =
+                first + bounds_.candidates(point, mirrored, scratch.candidates.data(), scratch.cull.data());
+            const Hit next = closest(first, last, point, mirrored, Real(kReflectedRayMinT));
             // A reflected ray that hits nothing returns black, unlike an eye ray.
-            colour += trace(point, scratch.origin, mirrored, Real(kReflectedRayMinT), reflections_left - 1,
-                            V{}, scratch) *
-                      e.kr;
+            const V seen =
+                next.ellipsoid == nullptr ? V{} : shade(next, point, mirrored, reflections_left - 1, scratch);
+            colour += seen * e.kr;
         }
         return colour;
     }
