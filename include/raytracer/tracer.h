@@ -51,7 +51,7 @@ struct TraceScratch {
     std::vector<std::uint32_t> candidates;
     std::vector<typename SphereBounds<Real>::C> cull;  // per ellipsoid: culled when not 0
     std::vector<std::uint32_t> last_occluder;          // per light; kNone when none yet
-    static constexpr std::uint32_t kNone = 0xffffffffu;
+    static constexpr std::uint32_t kNone = 0xffffffffU;
 };
 
 template <typename Real>
