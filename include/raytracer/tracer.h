@@ -73,6 +73,12 @@ public:
             lights_.push_back({V::from(l.position), V::from(l.intensity)});
             light_positions.push_back(V::from(l.position));
         }
+        // Per ellipsoid, the ambient term Ka*Ia*O (the same operations as per hit) and which
+        // terms are exactly zero (see shade()).
+        for (const Ellipsoid<Real>& e : ellipsoids_) {
+            const bool no_specular = e.ks == 0 && e.shininess >= 0 && e.shininess <= Real(1e6);
+            surfaces_.push_back({(ambient_ * e.ka) * e.colour, no_specular, no_specular && e.kd == 0});
+        }
         // Per ellipsoid and light, Ip*Kd and Ip*Ks: the first products of the handout's
         // terms, computed once instead of per hit (the same operations, so the same bits).
         for (const Ellipsoid<Real>& e : ellipsoids_)
@@ -302,7 +308,8 @@ private:
 
         // The terms are multiplied in the order the handout writes them: Ka*Ia*O, Kd*Ip*(N.L)*O
         // and Ks*Ip*(R.V)^n; a different order moves a few pixels across a truncation step.
-        V colour = (ambient_ * e.ka) * e.colour;
+        const Surface& surface = surfaces_[static_cast<std::size_t>(&e - ellipsoids_.data())];
+        V colour = surface.ambient;
 
         // Shortcuts that change no output byte (each term skipped is exactly zero, and
         // adding zero changes at most the sign of a zero channel, which prints as 0):
@@ -312,8 +319,8 @@ private:
         // - a light behind the surface (N.L <= 0) adds nothing whether or not it is
         //   blocked, so its shadow ray is cast only after that test (half the lights);
         // - V (to the viewer) is needed only for a specular term.
-        const bool no_specular = e.ks == 0 && e.shininess >= 0 && e.shininess <= Real(1e6);
-        const bool no_lighting = no_specular && e.kd == 0;
+        const bool no_specular = surface.no_specular;
+        const bool no_lighting = surface.no_lighting;
         const bool reflects = e.kr > 0 && reflections_left > 0;
         if (no_lighting && !reflects) return colour;  // neither the point nor its normal is needed
 
@@ -385,6 +392,12 @@ private:
         V diffuse, specular;  // Ip * Kd, Ip * Ks
     };
     std::vector<LightTerms> light_terms_;  // [ellipsoid * lights + light]
+    struct Surface {
+        V ambient;         // Ka * Ia * O
+        bool no_specular;  // Ks = 0 (and pow finite)
+        bool no_lighting;  // Kd = Ks = 0: no light adds anything
+    };
+    std::vector<Surface> surfaces_;  // per ellipsoid
     SphereBounds<Real> bounds_;
     typename SphereBounds<Real>::OriginTerms eye_terms_;
     std::vector<MappedOrigin<Real>> eye_origin_;  // per ellipsoid, of the camera
