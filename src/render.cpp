@@ -84,12 +84,8 @@ Image render(const Scene& scene, unsigned threads, bool accelerate) {
                     if (span.first <= c && c <= span.last) in_pixel[count++] = span.ellipsoid;
                 if (count == 0) continue;  // the background, already there
                 const Real x = column_x[static_cast<std::size_t>(c)];
-                const Vec3<Real> colour =
-                    tracer.trace_eye_ray({x, y, near_z}, in_pixel.data(), in_pixel.data() + count, scratch);
-                std::uint8_t* out = row_out + static_cast<std::size_t>(c) * 3;
-                out[0] = to_byte(colour.x);
-                out[1] = to_byte(colour.y);
-                out[2] = to_byte(colour.z);
+                tracer.eye_pixel({x, y, near_z}, in_pixel.data(), in_pixel.data() + count, scratch,
+                                 row_out + static_cast<std::size_t>(c) * 3);
             }
         }
     };

@@ -12,6 +12,7 @@
 #include "raytracer/direction_grid.h"
 #include "raytracer/ellipsoid.h"
 #include "raytracer/enclosures.h"
+#include "raytracer/image.h"
 #include "raytracer/scene.h"
 #include "raytracer/scene_precision.h"
 #include "raytracer/screen_bounds.h"
@@ -77,8 +78,16 @@ public:
         // terms are exactly zero (see shade()).
         for (const Ellipsoid<Real>& e : ellipsoids_) {
             const bool no_specular = e.ks == 0 && e.shininess >= 0 && e.shininess <= Real(1e6);
-            surfaces_.push_back({(ambient_ * e.ka) * e.colour, no_specular, no_specular && e.kd == 0});
+            Surface surface{(ambient_ * e.ka) * e.colour, no_specular, no_specular && e.kd == 0, false, {}};
+            surface.flat = surface.no_lighting && !(e.kr > 0);
+            surface.bytes[0] = to_byte(surface.ambient.x);
+            surface.bytes[1] = to_byte(surface.ambient.y);
+            surface.bytes[2] = to_byte(surface.ambient.z);
+            surfaces_.push_back(surface);
         }
+        background_bytes_[0] = to_byte(background_.x);
+        background_bytes_[1] = to_byte(background_.y);
+        background_bytes_[2] = to_byte(background_.z);
         // Per ellipsoid and light, Ip*Kd and Ip*Ks: the first products of the handout's
         // terms, computed once instead of per hit (the same operations, so the same bits).
         for (const Ellipsoid<Real>& e : ellipsoids_)
@@ -132,6 +141,27 @@ public:
             usable.push_back(accelerate_ && bounds_.guards({0, 0, 0}, {0, 0, 0}, i));
         }
         return screen_bounds(scene, spheres, usable);
+    }
+
+    // The same, written as the pixel's three bytes (to_byte()). A surface that no light
+    // and no reflection changes (Kd = Ks = 0, Kr = 0) shows its ambient term alone, so
+    // its bytes are computed once per ellipsoid (the same to_byte() of the same colour).
+    void eye_pixel(const V& direction, const std::uint32_t* first, const std::uint32_t* last,
+                   TraceScratch<Real>& scratch, std::uint8_t* out) const {
+        const Hit hit = closest(first, last, Real(kEyeRayMinT), [&](std::uint32_t i) {
+            return intersect_mapped(ellipsoids_[i], eye_origin_[i], direction);
+        });
+        if (hit.ellipsoid != nullptr) {
+            const Surface& surface = surfaces_[static_cast<std::size_t>(hit.ellipsoid - ellipsoids_.data())];
+            if (!surface.flat) {
+                const V colour = shade(hit, V{}, direction, kMaxReflections, scratch);
+                out[0] = to_byte(colour.x), out[1] = to_byte(colour.y), out[2] = to_byte(colour.z);
+                return;
+            }
+            out[0] = surface.bytes[0], out[1] = surface.bytes[1], out[2] = surface.bytes[2];
+            return;
+        }
+        out[0] = background_bytes_[0], out[1] = background_bytes_[1], out[2] = background_bytes_[2];
     }
 
     // Per ellipsoid, the columns of a row that may see it (screen_bounds.h).
@@ -393,10 +423,13 @@ private:
     };
     std::vector<LightTerms> light_terms_;  // [ellipsoid * lights + light]
     struct Surface {
-        V ambient;         // Ka * Ia * O
-        bool no_specular;  // Ks = 0 (and pow finite)
-        bool no_lighting;  // Kd = Ks = 0: no light adds anything
+        V ambient;              // Ka * Ia * O
+        bool no_specular;       // Ks = 0 (and pow finite)
+        bool no_lighting;       // Kd = Ks = 0: no light adds anything
+        bool flat;              // no_lighting and Kr = 0: the colour is the ambient term
+        std::uint8_t bytes[3];  // to_byte() of the ambient term
     };
+    std::uint8_t background_bytes_[3] = {};
     std::vector<Surface> surfaces_;  // per ellipsoid
     SphereBounds<Real> bounds_;
     typename SphereBounds<Real>::OriginTerms eye_terms_;
