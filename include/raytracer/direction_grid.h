@@ -32,8 +32,42 @@ class DirectionGrid {
 public:
     DirectionGrid() = default;
 
+    // The cone that contains a cell, in its face's own coordinates (w along the face's
+    // axis, outward; u and v as in list()): the same for the cell at (row, col) of
+    // each of the six faces, so computed once for all faces and all lights.
+    struct CellCone {
+        C w, u, v;       // the unit direction through the cell's centre
+        C cos_a, sin_a;  // of the largest angle from it to a corner of the cell
+    };
+    static std::vector<CellCone> cell_cones(int n) {
+        using std::sqrt;
+        std::vector<CellCone> cones;
+        cones.reserve(static_cast<std::size_t>(n) * static_cast<std::size_t>(n));
+        for (int row = 0; row < n; ++row)
+            for (int col = 0; col < n; ++col) {
+                CellCone k{};
+                unit_direction((C(col) + C(0.5)) * 2 / C(n) - 1, (C(row) + C(0.5)) * 2 / C(n) - 1, k.w, k.u,
+                               k.v);
+                k.cos_a = 1;
+                for (int corner = 0; corner < 4; ++corner) {
+                    C kw, ku, kv;
+                    unit_direction(C(col + (corner & 1)) * 2 / C(n) - 1,
+                                   C(row + (corner >> 1)) * 2 / C(n) - 1, kw, ku, kv);
+                    k.cos_a = std::min(k.cos_a, k.w * kw + k.u * ku + k.v * kv);
+                }
+                k.sin_a = sqrt(std::max(C(0), C(1) - k.cos_a * k.cos_a));
+                cones.push_back(k);
+            }
+        return cones;
+    }
+
     // Cells of size 2/n on each cube face (n >= 1).
     DirectionGrid(C px, C py, C pz, const std::vector<BoundingSphere<C>>& spheres, int n)
+        : DirectionGrid(px, py, pz, spheres, n, cell_cones(n)) {}
+
+    // The same with the cones of cell_cones(n), shared by the grids of all lights.
+    DirectionGrid(C px, C py, C pz, const std::vector<BoundingSphere<C>>& spheres, int n,
+                  const std::vector<CellCone>& cones)
         : x_(px), y_(py), z_(pz), n_(n) {
         using std::sqrt;
         const std::size_t cells = 6 * static_cast<std::size_t>(n) * static_cast<std::size_t>(n);
@@ -57,33 +91,42 @@ public:
             v.sin_b = s.radius / dist;
             v.cos_b = sqrt(C(1) - v.sin_b * v.sin_b);
         }
-        for (int face = 0; face < 6; ++face)
-            for (int row = 0; row < n; ++row)
-                for (int col = 0; col < n; ++col) {
-                    // The cell's centre direction and the cosine and sine of the largest
-                    // angle from it to a corner (a cone that contains the cell).
-                    C cx, cy, cz;
-                    unit_direction(face, (C(col) + C(0.5)) * 2 / C(n) - 1, (C(row) + C(0.5)) * 2 / C(n) - 1,
-                                   cx, cy, cz);
-                    C cos_a = 1;
-                    for (int corner = 0; corner < 4; ++corner) {
-                        C kx, ky, kz;
-                        unit_direction(face, C(col + (corner & 1)) * 2 / C(n) - 1,
-                                       C(row + (corner >> 1)) * 2 / C(n) - 1, kx, ky, kz);
-                        cos_a = std::min(cos_a, cx * kx + cy * ky + cz * kz);
-                    }
-                    const C sin_a = sqrt(std::max(C(0), C(1) - cos_a * cos_a));
-                    for (std::size_t i = 0; i < spheres.size(); ++i) {
-                        const Seen& v = seen[i];
-                        // Angle(centre, sphere) <= a + b, in cosines (a + b < pi, as a is
-                        // at most 55 degrees and b below 90): cos(theta) >= cos(a + b).
-                        const bool listed =
-                            v.everywhere || cx * v.ux + cy * v.uy + cz * v.uz >=
-                                                (cos_a * v.cos_b - sin_a * v.sin_b) - kAngleMargin;
-                        if (listed) items_.push_back(static_cast<std::uint32_t>(i));
-                    }
-                    offsets_.push_back(static_cast<std::uint32_t>(items_.size()));
+        // Per face, each sphere's direction in the face's coordinates (w, u, v), so that
+        // its angle to a cell's centre is a dot product with the cell's cone.
+        struct Local {
+            C w, u, v, sin_b, cos_b;
+            bool everywhere;
+        };
+        std::vector<Local> local(spheres.size());
+        for (int face = 0; face < 6; ++face) {
+            const C sign = (face & 1) ? C(-1) : C(1);
+            for (std::size_t i = 0; i < spheres.size(); ++i) {
+                const Seen& v = seen[i];
+                Local& l = local[i];
+                l.everywhere = v.everywhere, l.sin_b = v.sin_b, l.cos_b = v.cos_b;
+                if (v.everywhere) continue;
+                if (face < 2) {
+                    l.w = sign * v.ux, l.u = v.uy, l.v = v.uz;
+                } else if (face < 4) {
+                    l.w = sign * v.uy, l.u = v.ux, l.v = v.uz;
+                } else {
+                    l.w = sign * v.uz, l.u = v.ux, l.v = v.uy;
                 }
+            }
+            for (const CellCone& k : cones) {
+                for (std::size_t i = 0; i < spheres.size(); ++i) {
+                    const Local& l = local[i];
+                    // Angle(centre, sphere) <= a + b, in cosines (a + b < pi, as a is at
+                    // most 55 degrees and b below 90): cos(theta) >= cos(a + b). The
+                    // rounding of the face coordinates (an ulp) is far below the margin.
+                    const bool listed =
+                        l.everywhere || k.w * l.w + k.u * l.u + k.v * l.v >=
+                                            (k.cos_a * l.cos_b - k.sin_a * l.sin_b) - kAngleMargin;
+                    if (listed) items_.push_back(static_cast<std::uint32_t>(i));
+                }
+                offsets_.push_back(static_cast<std::uint32_t>(items_.size()));
+            }
+        }
     }
 
     // The ellipsoids that a ray from X in direction (dx, dy, dz) may meet: [first, last).
@@ -99,10 +142,12 @@ public:
         } else {
             face = dz > 0 ? 4 : 5, u = dx, v = dy, m = az;
         }
+        // One reciprocal for both coordinates: an ulp more rounding, far inside kAngleMargin.
+        const C scale = C(n_) / 2 / m;
         const std::size_t cell = (static_cast<std::size_t>(face) * static_cast<std::size_t>(n_) +
-                                  static_cast<std::size_t>(index(v / m))) *
+                                  static_cast<std::size_t>(index(v * scale + C(n_) / 2))) *
                                      static_cast<std::size_t>(n_) +
-                                 static_cast<std::size_t>(index(u / m));
+                                 static_cast<std::size_t>(index(u * scale + C(n_) / 2));
         *last = items_.data() + offsets_[cell + 1];
         return items_.data() + offsets_[cell];
     }
@@ -116,26 +161,19 @@ private:
     // test; small against a cell (2/n of a face).
     static constexpr double kAngleMargin = 1e-6;
 
-    // Cell index along one face axis of a coordinate in [-1, 1]; NaN gives 0.
-    int index(C w) const {
-        const C k = (w + 1) * C(n_) / 2;
+    // Cell index along one face axis of k = (w + 1) n / 2 for a coordinate w in [-1, 1];
+    // NaN gives 0.
+    int index(C k) const {
         if (!(k > 0)) return 0;
         return k >= C(n_) ? n_ - 1 : static_cast<int>(k);
     }
 
-    // The unit direction through face coordinates (u, v), both in [-1, 1].
-    static void unit_direction(int face, C u, C v, C& dx, C& dy, C& dz) {
+    // The unit direction through face coordinates (u, v), both in [-1, 1], in the face's
+    // own coordinates (w along its axis).
+    static void unit_direction(C u, C v, C& dw, C& du, C& dv) {
         using std::sqrt;
-        const C sign = (face & 1) ? C(-1) : C(1);
-        if (face < 2) {
-            dx = sign, dy = u, dz = v;
-        } else if (face < 4) {
-            dx = u, dy = sign, dz = v;
-        } else {
-            dx = u, dy = v, dz = sign;
-        }
-        const C len = sqrt(dx * dx + dy * dy + dz * dz);
-        dx /= len, dy /= len, dz /= len;
+        const C len = sqrt(C(1) + u * u + v * v);
+        dw = C(1) / len, du = u / len, dv = v / len;
     }
 
     C x_ = 0, y_ = 0, z_ = 0;

@@ -75,15 +75,31 @@ struct Roots {
 // about 2 |delta l| ~ a few ulps of |o'|, in either direction; a value within
 // 4 ulps(scene) of (1 + |o'|) below zero is taken as zero. The max-norm bounds |o'| to
 // within sqrt(3) and needs no square root.
+//
+// intersect() is mapped_origin() and intersect_mapped() in one: rays from one origin
+// (every eye ray) share o' and c, which the caller may compute once with mapped_origin().
 template <typename Real>
-Roots<Real> intersect(const Ellipsoid<Real>& e, const Vec3<Real>& origin, const Vec3<Real>& direction) {
+struct MappedOrigin {
+    Vec3<Real> o;  // (origin - C) / s
+    Real c;        // o'.o' - 1
+};
+
+template <typename Real>
+MappedOrigin<Real> mapped_origin(const Ellipsoid<Real>& e, const Vec3<Real>& origin) {
+    const Vec3<Real> o = (origin - e.centre) / e.scale;
+    return {o, dot(o, o) - Real(1)};
+}
+
+template <typename Real>
+Roots<Real> intersect_mapped(const Ellipsoid<Real>& e, const MappedOrigin<Real>& m,
+                             const Vec3<Real>& direction) {
     using std::abs;
     using std::sqrt;
-    const Vec3<Real> o = (origin - e.centre) / e.scale;
+    const Vec3<Real>& o = m.o;
+    const Real c = m.c;
     const Vec3<Real> d = direction / e.scale;
     const Real a = dot(d, d);
     const Real b = dot(o, d);
-    const Real c = dot(o, o) - Real(1);
     const Vec3<Real> l = o - d * (b / a);
     Real unit_disc = Real(1) - dot(l, l);  // (b^2 - a c) / a
     if (unit_disc < 0) {
@@ -97,6 +113,11 @@ Roots<Real> intersect(const Ellipsoid<Real>& e, const Vec3<Real>& origin, const 
     Real t1 = q / a, t2 = c / q;
     if (t1 > t2) std::swap(t1, t2);
     return {true, t1, t2};
+}
+
+template <typename Real>
+Roots<Real> intersect(const Ellipsoid<Real>& e, const Vec3<Real>& origin, const Vec3<Real>& direction) {
+    return intersect_mapped(e, mapped_origin(e, origin), direction);
 }
 
 // The unit outward normal at a point P on the surface.
