@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "raytracer/ellipsoid.h"
+#include "raytracer/scene_precision.h"
 #include "raytracer/vec3.h"
 
 namespace rt {
@@ -25,7 +26,7 @@ namespace rt {
 template <typename Real>
 class Enclosures {
 public:
-    using C = std::conditional_t<(sizeof(Real) > sizeof(double)), Real, double>;
+    using C = AtLeastDouble<Real>;
 
     Enclosures() = default;
 

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <limits>
+#include <type_traits>
 
 namespace rt {
 
@@ -21,5 +22,10 @@ constexpr Real scene_epsilon() {
                ? std::numeric_limits<Real>::epsilon()
                : Real(std::numeric_limits<double>::epsilon());
 }
+
+// The exact shortcuts of the fast path (culling, prefilters) compute in double at least:
+// float would leave too little room between its own rounding and their safety margins.
+template <typename Real>
+using AtLeastDouble = std::conditional_t<(sizeof(Real) > sizeof(double)), Real, double>;
 
 }  // namespace rt

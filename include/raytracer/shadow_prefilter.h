@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "raytracer/ellipsoid.h"
+#include "raytracer/scene_precision.h"
 #include "raytracer/vec3.h"
 
 namespace rt {
@@ -27,7 +28,7 @@ namespace rt {
 template <typename Real>
 class ShadowPrefilter {
 public:
-    using C = std::conditional_t<(sizeof(Real) > sizeof(double)), Real, double>;
+    using C = AtLeastDouble<Real>;
     enum Answer { kUnsure, kClear, kBlocked };
 
     ShadowPrefilter() = default;

@@ -28,6 +28,7 @@
 
 #include "raytracer/direction_grid.h"
 #include "raytracer/ellipsoid.h"
+#include "raytracer/scene_precision.h"
 #include "raytracer/vec3.h"
 
 namespace rt {
@@ -35,9 +36,7 @@ namespace rt {
 template <typename Real>
 class SphereBounds {
 public:
-    // The culling arithmetic runs in double at least: float would leave too little room
-    // between its own rounding and the inflation.
-    using C = std::conditional_t<(sizeof(Real) > sizeof(double)), Real, double>;
+    using C = AtLeastDouble<Real>;
 
     SphereBounds() = default;
 
