@@ -21,10 +21,11 @@ inline const char* name_of(Real real) {
     return "long double";
 }
 
+// On one thread, so that the report's times compare the precisions and not the cores.
 inline rt::Image render(const rt::Scene& scene, Real real) {
-    if (real == Real::kFloat) return rt::render<float>(scene);
-    if (real == Real::kDouble) return rt::render<double>(scene);
-    return rt::render<long double>(scene);
+    if (real == Real::kFloat) return rt::render<float>(scene, 1);
+    if (real == Real::kDouble) return rt::render<double>(scene, 1);
+    return rt::render<long double>(scene, 1);
 }
 
 // How far an image is from a reference of the same size.
