@@ -1,10 +1,14 @@
 // Each term of the illumination model (SPEC section 5) against hand-computed values,
 // and the conversion of a colour to bytes (section 6).
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <random>
 
 #include "check.h"
 #include "raytracer/image.h"
+#include "raytracer/power.h"
 #include "raytracer/tracer.h"
 
 namespace {
@@ -152,4 +156,47 @@ TEST(colours_are_clamped_then_truncated) {
     CHECK_EQ(int{rt::to_byte(0.6)}, 153);
     CHECK_EQ(int{rt::to_byte(static_cast<long double>(0.6))}, 153);
     CHECK_EQ(int{rt::to_byte(0.6 - 1e-6)}, 152);
+}
+
+// (R.V)^n by multiplications for whole n (power.h): exact where the power is
+// representable, within n ulps elsewhere, std::pow for any other n.
+TEST(whole_exponents_are_recognised_and_others_go_to_pow) {
+    CHECK_EQ(rt::whole_exponent(50.0), 50);
+    CHECK_EQ(rt::whole_exponent(0.0), 0);
+    CHECK_EQ(rt::whole_exponent(65536.0), 65536);
+    CHECK_EQ(rt::whole_exponent(65537.0), -1);
+    CHECK_EQ(rt::whole_exponent(50.5), -1);
+    CHECK_EQ(rt::whole_exponent(-2.0), -1);
+    CHECK_EQ(rt::whole_exponent(std::numeric_limits<double>::quiet_NaN()), -1);
+    CHECK_EQ(rt::whole_exponent(std::numeric_limits<double>::infinity()), -1);
+    CHECK_EQ(rt::specular_power(0.25, 0.5, rt::whole_exponent(0.5)), 0.5);
+}
+
+TEST(whole_powers_are_exact_where_representable) {
+    CHECK_EQ(rt::whole_power(0.5, 3), 0.125);
+    CHECK_EQ(rt::whole_power(0.75, 2), 0.5625);
+    CHECK_EQ(rt::whole_power(1.0, 1000), 1.0);
+    CHECK_EQ(rt::whole_power(0.3, 0), 1.0);
+    CHECK_EQ(rt::whole_power(0.3, 1), 0.3);
+    CHECK_EQ(rt::whole_power(0.5, 1074), std::ldexp(1.0, -1074));  // the smallest subnormal
+}
+
+TEST(whole_powers_are_within_n_ulps_of_the_exact_power) {
+    std::mt19937_64 random(5);
+    std::uniform_real_distribution<double> base(0.05, 1.0);
+    const std::int32_t exponents[] = {2, 3, 7, 10, 20, 50, 100, 200, 1000};
+    double worst = 0;  // in units of n ulps
+    for (const std::int32_t n : exponents)
+        for (int i = 0; i < 2000; ++i) {
+            const double x = base(random);
+            const long double exact = std::pow(static_cast<long double>(x), static_cast<long double>(n));
+            if (exact < 1e-300L) continue;  // subnormal results have fewer digits
+            const double got = rt::whole_power(x, n);
+            const long double ulps =
+                std::fabs(static_cast<long double>(got) - exact) /
+                (exact * static_cast<long double>(std::numeric_limits<double>::epsilon()));
+            worst = std::max(worst, static_cast<double>(ulps) / n);
+        }
+    CHECK(worst <= 1.0);
+    CHECK(worst > 0);  // not vacuous: some powers do carry rounding
 }

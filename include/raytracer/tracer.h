@@ -13,6 +13,7 @@
 #include "raytracer/ellipsoid.h"
 #include "raytracer/enclosures.h"
 #include "raytracer/image.h"
+#include "raytracer/power.h"
 #include "raytracer/scene.h"
 #include "raytracer/scene_precision.h"
 #include "raytracer/screen_bounds.h"
@@ -78,7 +79,8 @@ public:
         // terms are exactly zero (see shade()).
         for (const Ellipsoid<Real>& e : ellipsoids_) {
             const bool no_specular = e.ks == 0 && e.shininess >= 0 && e.shininess <= Real(1e6);
-            Surface surface{(ambient_ * e.ka) * e.colour, no_specular, no_specular && e.kd == 0, false, {}};
+            Surface surface{(ambient_ * e.ka) * e.colour, no_specular, no_specular && e.kd == 0, false, {},
+                            whole_exponent(e.shininess)};
             surface.flat = surface.no_lighting && !(e.kr > 0);
             surface.bytes[0] = to_byte(surface.ambient.x);
             surface.bytes[1] = to_byte(surface.ambient.y);
@@ -344,7 +346,7 @@ private:
         // Shortcuts that change no output byte (each term skipped is exactly zero, and
         // adding zero changes at most the sign of a zero channel, which prints as 0):
         // - with Ks = 0 the specular term is zero (pow is finite here: R.V <= 1 + a few
-        //   ulps and 0 <= n <= 1e6), so pow() is not called;
+        //   ulps and 0 <= n <= 1e6), so no power is computed;
         // - with Kd = 0 as well no light adds anything: no shadow ray at all;
         // - a light behind the surface (N.L <= 0) adds nothing whether or not it is
         //   blocked, so its shadow ray is cast only after that test (half the lights);
@@ -396,10 +398,8 @@ private:
             if (!have_to_viewer) to_viewer = normalize(-direction), have_to_viewer = true;
             const V reflected_light = normal * (2 * n_dot_l) - l;
             const Real r_dot_v = dot(reflected_light, to_viewer);
-            if (r_dot_v > 0) {
-                using std::pow;
-                colour += terms[li].specular * pow(r_dot_v, e.shininess);
-            }
+            if (r_dot_v > 0)
+                colour += terms[li].specular * specular_power(r_dot_v, e.shininess, surface.exponent);
         }
 
         if (reflects) {
@@ -428,6 +428,7 @@ private:
         bool no_lighting;       // Kd = Ks = 0: no light adds anything
         bool flat;              // no_lighting and Kr = 0: the colour is the ambient term
         std::uint8_t bytes[3];  // to_byte() of the ambient term
+        std::int32_t exponent;  // whole_exponent(n): -1 when pow() is needed
     };
     std::uint8_t background_bytes_[3] = {};
     std::vector<Surface> surfaces_;  // per ellipsoid
