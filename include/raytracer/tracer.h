@@ -166,6 +166,30 @@ public:
         out[0] = background_bytes_[0], out[1] = background_bytes_[1], out[2] = background_bytes_[2];
     }
 
+    // The three bytes of a pixel whose eye ray (from the camera along direction) was found
+    // by the caller to hit ellipsoid i first at t (inside: the far root was taken), as
+    // eye_pixel() would write them. For renderers that intersect eye rays themselves,
+    // e.g. many pixels at once, with the operations of intersect_mapped().
+    void eye_hit_pixel(std::uint32_t i, Real t, bool inside, const V& direction, TraceScratch<Real>& scratch,
+                       std::uint8_t* out) const {
+        const Surface& surface = surfaces_[i];
+        if (surface.flat) {
+            out[0] = surface.bytes[0], out[1] = surface.bytes[1], out[2] = surface.bytes[2];
+            return;
+        }
+        const V colour = shade(Hit{&ellipsoids_[i], t, inside}, V{}, direction, kMaxReflections, scratch);
+        out[0] = to_byte(colour.x), out[1] = to_byte(colour.y), out[2] = to_byte(colour.z);
+    }
+    // Per ellipsoid, the ellipsoid and the camera's terms in its unit space
+    // (mapped_origin()), for eye rays intersected by the caller.
+    const Ellipsoid<Real>& ellipsoid(std::size_t i) const { return ellipsoids_[i]; }
+    const MappedOrigin<Real>& eye_origin(std::size_t i) const { return eye_origin_[i]; }
+    // The bytes of the background.
+    const std::uint8_t* background_bytes() const { return background_bytes_; }
+    // Whether an eye ray's root t counts as a hit beyond the near plane: closest()'s test
+    // (a root within 8 scene ulps of t = 1 is on the plane, see there).
+    static Real eye_min_t() { return Real(kEyeRayMinT) * (Real(1) + Real(8) * scene_epsilon<Real>()); }
+
     // Per ellipsoid, the columns of a row that may see it (screen_bounds.h).
     RowSpans<C> row_spans(const Scene& scene) const {
         std::vector<Vec3<C>> centres, scales;
