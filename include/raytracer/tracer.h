@@ -12,6 +12,7 @@
 #include "raytracer/direction_grid.h"
 #include "raytracer/ellipsoid.h"
 #include "raytracer/enclosures.h"
+#include "raytracer/eye_packet.h"
 #include "raytracer/image.h"
 #include "raytracer/power.h"
 #include "raytracer/scene.h"
@@ -145,6 +146,20 @@ public:
         return screen_bounds(scene, spheres, usable);
     }
 
+    // The nearest surface along origin + t direction with t > min_t.
+    struct Hit {
+        const Ellipsoid<Real>* ellipsoid = nullptr;
+        Real t = 0;
+        bool inside = false;  // the far root was taken: the ray sees the inner surface
+    };
+
+    // The first hit of an eye ray among the ellipsoids [first, last) (increasing).
+    Hit eye_hit(const V& direction, const std::uint32_t* first, const std::uint32_t* last) const {
+        return closest(first, last, Real(kEyeRayMinT), [&](std::uint32_t i) {
+            return intersect_mapped(ellipsoids_[i], eye_origin_[i], direction);
+        });
+    }
+
     // The same, written as the pixel's three bytes (to_byte()). A surface that no light
     // and no reflection changes (Kd = Ks = 0, Kr = 0) shows its ambient term alone, so
     // its bytes are computed once per ellipsoid (the same to_byte() of the same colour).
@@ -180,6 +195,76 @@ public:
         const V colour = shade(Hit{&ellipsoids_[i], t, inside}, V{}, direction, kMaxReflections, scratch);
         out[0] = to_byte(colour.x), out[1] = to_byte(colour.y), out[2] = to_byte(colour.z);
     }
+    // Up to kPacket eye-ray hits on ellipsoid i at once: pixel k < count looks along
+    // (dx[k], dy[k], dz[k]) and meets the ellipsoid first at t[k] (inside[k]: the far
+    // root); its three bytes go to out[k], exactly as eye_hit_pixel() writes them.
+    //
+    // WHY: neighbouring pixels mostly see the same ellipsoid, and all of shade()'s
+    // arithmetic but the shadow rays is then the same chain of operations per pixel, run
+    // here with the pixels as the lanes of vector instructions (eye_packet.h). Every lane
+    // does the operations of shade() in its order, and a term that shade() skips is not
+    // added (a select, not an addition of zero), so the bytes are the same.
+    static constexpr int kPacket = kEyePacket;
+    void eye_hit_pixels(std::uint32_t i, int count, const Real* dx, const Real* dy, const Real* dz,
+                        const Real* t, const bool* inside, TraceScratch<Real>& scratch,
+                        std::uint8_t* const* out) const {
+        const Surface& surface = surfaces_[i];
+        if (surface.flat) {
+            for (int k = 0; k < count; ++k)
+                out[k][0] = surface.bytes[0], out[k][1] = surface.bytes[1], out[k][2] = surface.bytes[2];
+            return;
+        }
+        V colours[kPacket];
+        eye_hit_colours(i, count, dx, dy, dz, t, inside, scratch, colours);
+        for (int k = 0; k < count; ++k)
+            out[k][0] = to_byte(colours[k].x), out[k][1] = to_byte(colours[k].y),
+            out[k][2] = to_byte(colours[k].z);
+    }
+    // The same as colours (shade()'s results, before conversion to bytes).
+    void eye_hit_colours(std::uint32_t i, int count, const Real* dx, const Real* dy, const Real* dz,
+                         const Real* t, const bool* inside, TraceScratch<Real>& scratch, V* colours) const {
+        const Surface& surface = surfaces_[i];
+        const Ellipsoid<Real>& e = ellipsoids_[i];
+        EyePacket<Real> p;
+        p.load(count, dx, dy, dz, t, inside);
+        p.start_colour(surface.ambient);
+        if (surface.no_lighting && !(e.kr > 0)) {  // shade() returns the ambient term
+            for (int k = 0; k < count; ++k) colours[k] = surface.ambient;
+            return;
+        }
+        p.surface(e.centre, e.scale_squared);
+        if (!surface.no_lighting) {
+            p.self_terms(e.scale);
+            if (!surface.no_specular) p.viewer();
+            const LightTerms* terms = light_terms_.data() + std::size_t(i) * lights_.size();
+            for (std::size_t li = 0; li < lights_.size(); ++li) {
+                if (!p.light(lights_[li].position, kSelfSlack)) continue;  // behind every pixel
+                for (int k = 0; k < count; ++k) {
+                    if (p.front[k] == 0) continue;
+                    const V point{p.px[k], p.py[k], p.pz[k]}, to_light{p.tx[k], p.ty[k], p.tz[k]};
+                    const bool shadowed = in_shadow(point, to_light, li, scratch,
+                                                    p.self_clear[k] != 0 ? i : TraceScratch<Real>::kNone);
+                    p.lit[k] = shadowed ? Real(0) : Real(1);
+                }
+                p.add_diffuse(terms[li].diffuse, e.colour);
+                if (surface.no_specular) continue;
+                if (surface.exponent >= 0) {
+                    p.specular_whole(terms[li].specular, surface.exponent);
+                } else {
+                    p.specular_pow(terms[li].specular, e.shininess);
+                }
+            }
+        }
+        if (e.kr > 0) {
+            for (int k = 0; k < count; ++k) {
+                const V seen = reflection({p.px[k], p.py[k], p.pz[k]}, {p.nx[k], p.ny[k], p.nz[k]},
+                                          {p.dx[k], p.dy[k], p.dz[k]}, kMaxReflections, scratch);
+                p.add(k, seen * e.kr);
+            }
+        }
+        for (int k = 0; k < count; ++k) colours[k] = {p.r[k], p.g[k], p.b[k]};
+    }
+
     // Per ellipsoid, the ellipsoid and the camera's terms in its unit space
     // (mapped_origin()), for eye rays intersected by the caller.
     const Ellipsoid<Real>& ellipsoid(std::size_t i) const { return ellipsoids_[i]; }
@@ -207,13 +292,6 @@ public:
         TraceScratch<Real> scratch = make_scratch();
         return trace_eye_ray(direction, scratch);
     }
-
-    // The nearest surface along origin + t direction with t > min_t.
-    struct Hit {
-        const Ellipsoid<Real>* ellipsoid = nullptr;
-        Real t = 0;
-        bool inside = false;  // the far root was taken: the ray sees the inner surface
-    };
 
     // Only the ellipsoids the bounding spheres cannot rule out are intersected.
     Hit nearest_hit(const V& origin, const typename SphereBounds<Real>::OriginTerms& terms,
@@ -426,18 +504,20 @@ private:
                 colour += terms[li].specular * specular_power(r_dot_v, e.shininess, surface.exponent);
         }
 
-        if (reflects) {
-            const V mirrored = direction - normal * (2 * dot(normal, direction));
-            const std::uint32_t* first = scratch.candidates.data();
-            const std::uint32_t* last =
-                first + bounds_.candidates(point, mirrored, scratch.candidates.data(), scratch.cull.data());
-            const Hit next = closest(first, last, point, mirrored, Real(kReflectedRayMinT));
-            // A reflected ray that hits nothing returns black, unlike an eye ray.
-            const V seen =
-                next.ellipsoid == nullptr ? V{} : shade(next, point, mirrored, reflections_left - 1, scratch);
-            colour += seen * e.kr;
-        }
+        if (reflects) colour += reflection(point, normal, direction, reflections_left, scratch) * e.kr;
         return colour;
+    }
+
+    // What the mirror at point (unit normal facing the viewer) shows along direction.
+    V reflection(const V& point, const V& normal, const V& direction, int reflections_left,
+                 TraceScratch<Real>& scratch) const {
+        const V mirrored = direction - normal * (2 * dot(normal, direction));
+        const std::uint32_t* first = scratch.candidates.data();
+        const std::uint32_t* last =
+            first + bounds_.candidates(point, mirrored, scratch.candidates.data(), scratch.cull.data());
+        const Hit next = closest(first, last, point, mirrored, Real(kReflectedRayMinT));
+        // A reflected ray that hits nothing returns black, unlike an eye ray.
+        return next.ellipsoid == nullptr ? V{} : shade(next, point, mirrored, reflections_left - 1, scratch);
     }
 
     std::vector<Ellipsoid<Real>> ellipsoids_;

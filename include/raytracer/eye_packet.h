@@ -1,0 +1,184 @@
+// The shading arithmetic of up to kEyePacket eye-ray hits on one ellipsoid, pixel k in
+// lane k of every array: the point, its normal, and per light L - P, N.L, R.V, the
+// specular power and the colour sums (SPEC section 5).
+//
+// WHY: Tracer::shade() does this one pixel at a time, a chain of dependent products,
+// square roots and divisions with branches in between. Neighbouring pixels mostly see
+// the same ellipsoid, so here the same chain runs over the pixels as flat loops over
+// fixed-size arrays, which GCC and Clang turn into vector instructions (8 doubles per
+// AVX-512 instruction). Each lane performs exactly shade()'s operations in shade()'s
+// order (listed at each step), lanes do not mix, and vector instructions round as scalar
+// ones do (no fused multiply-adds: CMakeLists.txt), so each pixel gets the same bits.
+// Where shade() skips a term (light behind, in shadow, R.V <= 0), the lane keeps its
+// sum by a select; no zero is added. Shadow rays branch per pixel and stay scalar
+// (Tracer::eye_hit_pixels()).
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+
+#include "raytracer/vec3.h"
+
+namespace rt {
+
+inline constexpr int kEyePacket = 8;
+
+template <typename Real>
+struct EyePacket {
+    static constexpr int N = kEyePacket;
+    int count = 0;
+    Real dx[N], dy[N], dz[N], t[N];  // the eye ray and its root
+    Real inside[N];                  // masks are 1 or 0 (bool arrays would keep loops scalar)
+    Real px[N], py[N], pz[N];        // the hit point
+    Real cx[N], cy[N], cz[N];        // point - centre
+    Real nx[N], ny[N], nz[N];        // the unit normal, facing the viewer
+    Real scaled_length[N];           // |(P - C) / s^2|
+    Real self_c[N];                  // |o'.o' - 1| of the self-shadow test
+    Real self_test[N];               // mask
+    Real vx[N], vy[N], vz[N];        // normalize(-direction)
+    // Of the current light:
+    Real tx[N], ty[N], tz[N];  // L - P
+    Real distance[N];          // |L - P|
+    Real lx[N], ly[N], lz[N];  // normalize(L - P)
+    Real n_dot_l[N];
+    Real front[N], self_clear[N], lit[N];  // masks
+    Real r[N], g[N], b[N];                 // the colour
+
+    // The rays; lanes from count on repeat the last ray (their results are not used).
+    void load(int n, const Real* x, const Real* y, const Real* z, const Real* root, const bool* in) {
+        count = n;
+        for (int k = 0; k < N; ++k) {
+            const int from = k < n ? k : n - 1;
+            dx[k] = x[from], dy[k] = y[from], dz[k] = z[from], t[k] = root[from], inside[k] = mask(in[from]);
+        }
+    }
+
+    // shade(): point = origin + direction * t with origin (0, 0, 0); to_centre = point -
+    // centre; scaled = to_centre / s^2; scaled_length = length(scaled); normal = scaled *
+    // (1 / scaled_length), negated when inside.
+    void surface(const Vec3<Real>& centre, const Vec3<Real>& scale_squared) {
+        using std::sqrt;
+        for (int k = 0; k < N; ++k) {
+            px[k] = Real(0) + dx[k] * t[k], py[k] = Real(0) + dy[k] * t[k], pz[k] = Real(0) + dz[k] * t[k];
+            cx[k] = px[k] - centre.x, cy[k] = py[k] - centre.y, cz[k] = pz[k] - centre.z;
+            const Real sx = cx[k] / scale_squared.x, sy = cy[k] / scale_squared.y,
+                       sz = cz[k] / scale_squared.z;
+            const Real length = sqrt(sx * sx + sy * sy + sz * sz);
+            scaled_length[k] = length;
+            const Real inverse = Real(1) / length;
+            const Real ux = sx * inverse, uy = sy * inverse, uz = sz * inverse;
+            const bool flip = inside[k] != 0;
+            nx[k] = flip ? -ux : ux, ny[k] = flip ? -uy : uy, nz[k] = flip ? -uz : uz;
+        }
+    }
+
+    void start_colour(const Vec3<Real>& ambient) {
+        for (int k = 0; k < N; ++k) r[k] = ambient.x, g[k] = ambient.y, b[k] = ambient.z;
+    }
+
+    // shade(): o = to_centre / scale; self_c = |o.o - 1|; the test holds outside and
+    // where self_c is a number.
+    void self_terms(const Vec3<Real>& scale) {
+        using std::abs;
+        for (int k = 0; k < N; ++k) {
+            const Real ox = cx[k] / scale.x, oy = cy[k] / scale.y, oz = cz[k] / scale.z;
+            self_c[k] = abs(ox * ox + oy * oy + oz * oz - Real(1));
+            self_test[k] = (Real(1) - inside[k]) * mask(self_c[k] == self_c[k]);
+        }
+    }
+
+    // shade(): to_viewer = normalize(-direction).
+    void viewer() {
+        using std::sqrt;
+        for (int k = 0; k < N; ++k) {
+            const Real x = -dx[k], y = -dy[k], z = -dz[k];
+            const Real inverse = Real(1) / sqrt(x * x + y * y + z * z);
+            vx[k] = x * inverse, vy[k] = y * inverse, vz[k] = z * inverse;
+        }
+    }
+
+    // shade(), per light: to_light = L - P; light_distance = length(to_light); l =
+    // to_light * (1 / light_distance); n_dot_l = dot(normal, l); front when n_dot_l > 0;
+    // self_clear as there. lit starts false. False when no pixel has the light in front.
+    bool light(const Vec3<Real>& position, Real self_slack) {
+        using std::sqrt;
+        for (int k = 0; k < N; ++k) {
+            const Real x = position.x - px[k], y = position.y - py[k], z = position.z - pz[k];
+            const Real d = sqrt(x * x + y * y + z * z);
+            const Real inverse = Real(1) / d;
+            const Real ux = x * inverse, uy = y * inverse, uz = z * inverse;
+            const Real cosine = nx[k] * ux + ny[k] * uy + nz[k] * uz;
+            tx[k] = x, ty[k] = y, tz[k] = z, distance[k] = d, lx[k] = ux, ly[k] = uy, lz[k] = uz;
+            n_dot_l[k] = cosine;
+            front[k] = mask(cosine > 0);
+            self_clear[k] =
+                self_test[k] * mask(scaled_length[k] * d * (cosine - self_slack) > Real(2000) * self_c[k]);
+            lit[k] = 0;
+        }
+        Real any = 0;
+        for (int k = 0; k < count; ++k) any += front[k];
+        return any != 0;
+    }
+
+    // shade(): colour += (Ip Kd * n_dot_l) * O where lit.
+    void add_diffuse(const Vec3<Real>& diffuse, const Vec3<Real>& colour) {
+        for (int k = 0; k < N; ++k) {
+            const Real dr = r[k] + (diffuse.x * n_dot_l[k]) * colour.x;
+            const Real dg = g[k] + (diffuse.y * n_dot_l[k]) * colour.y;
+            const Real db = b[k] + (diffuse.z * n_dot_l[k]) * colour.z;
+            const bool adds = lit[k] != 0;
+            r[k] = adds ? dr : r[k], g[k] = adds ? dg : g[k], b[k] = adds ? db : b[k];
+        }
+    }
+
+    // shade(): reflected = normal * (2 * n_dot_l) - l; r_dot_v = dot(reflected,
+    // to_viewer); colour += Ip Ks * r_dot_v^n where lit and r_dot_v > 0, the power by
+    // whole_power() (power.h), the same multiplications in each lane.
+    void specular_whole(const Vec3<Real>& specular, std::int32_t exponent) {
+        Real r_dot_v[N], result[N], base[N];
+        reflect(r_dot_v);
+        for (int k = 0; k < N; ++k) result[k] = 1, base[k] = r_dot_v[k];
+        for (std::int32_t bits = exponent; bits != 0; bits >>= 1) {
+            if (bits & 1)
+                for (int k = 0; k < N; ++k) result[k] *= base[k];
+            for (int k = 0; k < N; ++k) base[k] *= base[k];
+        }
+        add_specular(specular, r_dot_v, result);
+    }
+
+    // The same with std::pow for an exponent that is not a whole number.
+    void specular_pow(const Vec3<Real>& specular, Real exponent) {
+        using std::pow;
+        Real r_dot_v[N], result[N];
+        reflect(r_dot_v);
+        for (int k = 0; k < N; ++k)
+            result[k] = lit[k] != 0 && r_dot_v[k] > 0 ? pow(r_dot_v[k], exponent) : Real(0);
+        add_specular(specular, r_dot_v, result);
+    }
+
+    // shade(): colour += seen * kr, for lane k.
+    void add(int k, const Vec3<Real>& term) { r[k] += term.x, g[k] += term.y, b[k] += term.z; }
+
+private:
+    static Real mask(bool b) { return b ? Real(1) : Real(0); }
+
+    void reflect(Real* r_dot_v) const {
+        for (int k = 0; k < N; ++k) {
+            const Real twice = 2 * n_dot_l[k];
+            const Real rx = nx[k] * twice - lx[k], ry = ny[k] * twice - ly[k], rz = nz[k] * twice - lz[k];
+            r_dot_v[k] = rx * vx[k] + ry * vy[k] + rz * vz[k];
+        }
+    }
+
+    void add_specular(const Vec3<Real>& specular, const Real* r_dot_v, const Real* power) {
+        for (int k = 0; k < N; ++k) {
+            const bool adds = lit[k] * mask(r_dot_v[k] > 0) != 0;  // no &&: it would branch
+            const Real sr = r[k] + specular.x * power[k];
+            const Real sg = g[k] + specular.y * power[k];
+            const Real sb = b[k] + specular.z * power[k];
+            r[k] = adds ? sr : r[k], g[k] = adds ? sg : g[k], b[k] = adds ? sb : b[k];
+        }
+    }
+};
+
+}  // namespace rt

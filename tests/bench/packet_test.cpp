@@ -1,0 +1,127 @@
+// Tracer::eye_hit_pixels() shades up to kPacket eye-ray hits at once with vector
+// instructions (eye_packet.h); each pixel's colour must equal, bit for bit, the one of
+// the one-pixel path (trace_eye_ray(), i.e. shade()), and its bytes those of
+// eye_hit_pixel(), in float, double and long double: for packets of neighbouring
+// pixels, of pixels scattered over a row, and of sizes 1, 3 and kPacket.
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "check.h"
+#include "raytracer/tracer.h"
+#include "stress_scenes.h"
+
+namespace {
+
+// Equal values with equal signs (0 and -0 differ), or both NaN: the same bits but for
+// a NaN's payload and long double's padding.
+template <typename Real>
+bool same(Real a, Real b) {
+    return (a == b && std::signbit(a) == std::signbit(b)) || (a != a && b != b);
+}
+
+template <typename Real>
+struct EyeHit {
+    std::uint32_t ellipsoid;
+    Real x, y, z, t;
+    bool inside;
+    int column;
+};
+
+// Renders every row of the scene twice, pixel by pixel and in packets of the given
+// size (gathering the row's hits on each ellipsoid in column order, every stride-th
+// first), and counts the bytes and the colours that differ.
+template <typename Real>
+long long differing_bytes(const rt::Scene& scene, int packet, int stride) {
+    using V = rt::Vec3<Real>;
+    const rt::Tracer<Real> tracer(scene);
+    rt::TraceScratch<Real> scratch = tracer.make_scratch();
+    long long differing = 0;
+    const Real left = Real(scene.left), right = Real(scene.right), top = Real(scene.top),
+               bottom = Real(scene.bottom);
+    for (int r = 0; r < scene.rows; ++r) {
+        std::vector<EyeHit<Real>> hits;
+        const Real y = top - (top - bottom) * Real(r) / Real(scene.rows);
+        for (int c = 0; c < scene.columns; ++c) {
+            const Real x = left + (right - left) * Real(c) / Real(scene.columns);
+            const V d{x, y, -Real(scene.near_plane)};
+            const auto hit = tracer.nearest_hit(V{}, d, Real(rt::kEyeRayMinT));
+            if (hit.ellipsoid == nullptr) continue;
+            const auto i = static_cast<std::uint32_t>(hit.ellipsoid - &tracer.ellipsoid(0));
+            hits.push_back({i, d.x, d.y, d.z, hit.t, hit.inside, c});
+        }
+        std::vector<std::uint8_t> one(std::size_t(scene.columns) * 3), many(one.size());
+        std::vector<V> one_colour(std::size_t(scene.columns)), many_colour(one_colour.size());
+        for (const EyeHit<Real>& h : hits) {
+            tracer.eye_hit_pixel(h.ellipsoid, h.t, h.inside, {h.x, h.y, h.z}, scratch,
+                                 one.data() + std::size_t(h.column) * 3);
+            one_colour[std::size_t(h.column)] = tracer.trace_eye_ray({h.x, h.y, h.z}, scratch);
+        }
+        // Packets of hits on one ellipsoid, in the order (k mod stride, k).
+        for (std::uint32_t e = 0; e < scene.spheres.size(); ++e) {
+            std::vector<const EyeHit<Real>*> on;
+            for (int phase = 0; phase < stride; ++phase)
+                for (std::size_t k = std::size_t(phase); k < hits.size(); k += std::size_t(stride))
+                    if (hits[k].ellipsoid == e) on.push_back(&hits[k]);
+            for (std::size_t first = 0; first < on.size(); first += std::size_t(packet)) {
+                Real dx[rt::kEyePacket], dy[rt::kEyePacket], dz[rt::kEyePacket], t[rt::kEyePacket];
+                bool inside[rt::kEyePacket];
+                std::uint8_t* out[rt::kEyePacket];
+                V colours[rt::kEyePacket];
+                int count = 0;
+                for (std::size_t k = first; k < on.size() && count < packet; ++k, ++count) {
+                    dx[count] = on[k]->x, dy[count] = on[k]->y, dz[count] = on[k]->z, t[count] = on[k]->t;
+                    inside[count] = on[k]->inside;
+                    out[count] = many.data() + std::size_t(on[k]->column) * 3;
+                }
+                tracer.eye_hit_pixels(e, count, dx, dy, dz, t, inside, scratch, out);
+                tracer.eye_hit_colours(e, count, dx, dy, dz, t, inside, scratch, colours);
+                for (int k = 0; k < count; ++k)
+                    many_colour[std::size_t(on[std::size_t(k) + first]->column)] = colours[k];
+            }
+        }
+        for (std::size_t k = 0; k < one.size(); ++k) differing += one[k] != many[k];
+        // The colours bit for bit (a reordered sum moves one ulp, rarely a byte).
+        for (std::size_t k = 0; k < one_colour.size(); ++k)
+            differing += !same(one_colour[k].x, many_colour[k].x) ||
+                         !same(one_colour[k].y, many_colour[k].y) || !same(one_colour[k].z, many_colour[k].z);
+    }
+    return differing;
+}
+
+template <typename Real>
+bool packets_match(const std::string& name, const rt::Scene& scene) {
+    bool all = true;
+    for (const int packet : {1, 3, rt::kEyePacket})
+        for (const int stride : {1, 3}) {
+            const long long d = differing_bytes<Real>(scene, packet, stride);
+            if (d != 0)
+                std::cerr << name << " (" << sizeof(Real) << "-byte reals, packets of " << packet
+                          << ", stride " << stride << "): " << d << " bytes differ\n";
+            all = all && d == 0;
+        }
+    return all;
+}
+
+}  // namespace
+
+TEST(packets_of_scene_file_pixels_match_single_pixels) {
+    for (const auto& [name, scene] : stress::file_scenes(83, 67)) {
+        CHECK(packets_match<float>(name, scene));
+        CHECK(packets_match<double>(name, scene));
+        CHECK(packets_match<long double>(name, scene));
+    }
+}
+
+TEST(packets_of_random_scene_pixels_match_single_pixels) {
+    for (unsigned seed = 1; seed <= 40; ++seed) {
+        const rt::Scene scene = stress::random_scene(seed);
+        const std::string name = "random scene " + std::to_string(seed);
+        CHECK(packets_match<float>(name, scene));
+        CHECK(packets_match<double>(name, scene));
+        CHECK(packets_match<long double>(name, scene));
+    }
+}
