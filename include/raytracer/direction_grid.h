@@ -68,7 +68,7 @@ public:
     // The same with the cones of cell_cones(n), shared by the grids of all lights.
     DirectionGrid(C px, C py, C pz, const std::vector<BoundingSphere<C>>& spheres, int n,
                   const std::vector<CellCone>& cones)
-        : x_(px), y_(py), z_(pz), n_(n) {
+        : x_(px), y_(py), z_(pz), n_(n), half_n_(C(n) / 2) {
         using std::sqrt;
         const std::size_t cells = 6 * static_cast<std::size_t>(n) * static_cast<std::size_t>(n);
         offsets_.reserve(cells + 1);
@@ -131,25 +131,33 @@ public:
 
     // The ellipsoids that a ray from X in direction (dx, dy, dz) may meet: [first, last).
     const std::uint32_t* list(C dx, C dy, C dz, const std::uint32_t** last) const {
+        return cell_list(cell(dx, dy, dz), last);
+    }
+
+    // The same in two steps: the number of the cell that direction falls in, then its list.
+    // cells() finds the cells of N directions at once (vector instructions, the same
+    // operations as cell(), so the same cells).
+    std::int32_t cell(C dx, C dy, C dz) const {
         using std::abs;
         const C ax = abs(dx), ay = abs(dy), az = abs(dz);
-        int face;
-        C u, v, m;
-        if (ax >= ay && ax >= az) {
-            face = dx > 0 ? 0 : 1, u = dy, v = dz, m = ax;
-        } else if (ay >= az) {
-            face = dy > 0 ? 2 : 3, u = dx, v = dz, m = ay;
-        } else {
-            face = dz > 0 ? 4 : 5, u = dx, v = dy, m = az;
-        }
+        // The face of the largest coordinate, as selects rather than branches.
+        const bool x_major = ax >= ay && ax >= az;
+        const bool y_major = !x_major && ay >= az;
+        const std::int32_t face = x_major ? (dx > 0 ? 0 : 1) : y_major ? (dy > 0 ? 2 : 3) : (dz > 0 ? 4 : 5);
+        const C u = x_major ? dy : dx;
+        const C v = x_major || y_major ? dz : dy;
+        const C m = x_major ? ax : y_major ? ay : az;
         // One reciprocal for both coordinates: an ulp more rounding, far inside kAngleMargin.
-        const C scale = C(n_) / 2 / m;
-        const std::size_t cell = (static_cast<std::size_t>(face) * static_cast<std::size_t>(n_) +
-                                  static_cast<std::size_t>(index(v * scale + C(n_) / 2))) *
-                                     static_cast<std::size_t>(n_) +
-                                 static_cast<std::size_t>(index(u * scale + C(n_) / 2));
-        *last = items_.data() + offsets_[cell + 1];
-        return items_.data() + offsets_[cell];
+        const C scale = half_n_ / m;
+        return (face * n_ + index(v * scale + half_n_)) * n_ + index(u * scale + half_n_);
+    }
+    template <int N>
+    void cells(const C* dx, const C* dy, const C* dz, std::int32_t* out) const {
+        for (int k = 0; k < N; ++k) out[k] = cell(dx[k], dy[k], dz[k]);
+    }
+    const std::uint32_t* cell_list(std::int32_t cell, const std::uint32_t** last) const {
+        *last = items_.data() + offsets_[static_cast<std::size_t>(cell) + 1];
+        return items_.data() + offsets_[static_cast<std::size_t>(cell)];
     }
 
     C x() const { return x_; }
@@ -163,9 +171,9 @@ private:
 
     // Cell index along one face axis of k = (w + 1) n / 2 for a coordinate w in [-1, 1];
     // NaN gives 0.
-    int index(C k) const {
-        if (!(k > 0)) return 0;
-        return k >= C(n_) ? n_ - 1 : static_cast<int>(k);
+    std::int32_t index(C k) const {
+        const C positive = k > 0 ? k : C(0);
+        return positive >= C(n_) ? n_ - 1 : static_cast<std::int32_t>(positive);
     }
 
     // The unit direction through face coordinates (u, v), both in [-1, 1], in the face's
@@ -177,7 +185,8 @@ private:
     }
 
     C x_ = 0, y_ = 0, z_ = 0;
-    int n_ = 1;
+    std::int32_t n_ = 1;
+    C half_n_ = C(0.5);                   // n / 2, exact
     std::vector<std::uint32_t> offsets_;  // cell k lists items_[offsets_[k], offsets_[k + 1])
     std::vector<std::uint32_t> items_;
 };

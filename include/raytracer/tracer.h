@@ -7,12 +7,14 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
+#include "raytracer/compiler.h"
 #include "raytracer/direction_grid.h"
 #include "raytracer/ellipsoid.h"
 #include "raytracer/enclosures.h"
-#include "raytracer/eye_packet.h"
+#include "raytracer/hit_packet.h"
 #include "raytracer/image.h"
 #include "raytracer/power.h"
 #include "raytracer/scene.h"
@@ -21,16 +23,6 @@
 #include "raytracer/shadow_prefilter.h"
 #include "raytracer/sphere_bounds.h"
 #include "raytracer/vec3.h"
-
-// Forces inlining where GCC's heuristics flip with unrelated edits (measured: the
-// shadow test called out of line costs the heavy scene 4 % more instructions).
-#if defined(__GNUC__) || defined(__clang__)
-#define RT_ALWAYS_INLINE __attribute__((always_inline)) inline
-#elif defined(_MSC_VER)
-#define RT_ALWAYS_INLINE __forceinline
-#else
-#define RT_ALWAYS_INLINE inline
-#endif
 
 namespace rt {
 
@@ -204,7 +196,7 @@ public:
     // here with the pixels as the lanes of vector instructions (eye_packet.h). Every lane
     // does the operations of shade() in its order, and a term that shade() skips is not
     // added (a select, not an addition of zero), so the bytes are the same.
-    static constexpr int kPacket = kEyePacket;
+    static constexpr int kPacket = rt::kPacket;
     void eye_hit_pixels(std::uint32_t i, int count, const Real* dx, const Real* dy, const Real* dz,
                         const Real* t, const bool* inside, TraceScratch<Real>& scratch,
                         std::uint8_t* const* out) const {
@@ -223,46 +215,9 @@ public:
     // The same as colours (shade()'s results, before conversion to bytes).
     void eye_hit_colours(std::uint32_t i, int count, const Real* dx, const Real* dy, const Real* dz,
                          const Real* t, const bool* inside, TraceScratch<Real>& scratch, V* colours) const {
-        const Surface& surface = surfaces_[i];
-        const Ellipsoid<Real>& e = ellipsoids_[i];
-        EyePacket<Real> p;
-        p.load(count, dx, dy, dz, t, inside);
-        p.start_colour(surface.ambient);
-        if (surface.no_lighting && !(e.kr > 0)) {  // shade() returns the ambient term
-            for (int k = 0; k < count; ++k) colours[k] = surface.ambient;
-            return;
-        }
-        p.surface(e.centre, e.scale_squared);
-        if (!surface.no_lighting) {
-            p.self_terms(e.scale);
-            if (!surface.no_specular) p.viewer();
-            const LightTerms* terms = light_terms_.data() + std::size_t(i) * lights_.size();
-            for (std::size_t li = 0; li < lights_.size(); ++li) {
-                if (!p.light(lights_[li].position, kSelfSlack)) continue;  // behind every pixel
-                for (int k = 0; k < count; ++k) {
-                    if (p.front[k] == 0) continue;
-                    const V point{p.px[k], p.py[k], p.pz[k]}, to_light{p.tx[k], p.ty[k], p.tz[k]};
-                    const bool shadowed = in_shadow(point, to_light, li, scratch,
-                                                    p.self_clear[k] != 0 ? i : TraceScratch<Real>::kNone);
-                    p.lit[k] = shadowed ? Real(0) : Real(1);
-                }
-                p.add_diffuse(terms[li].diffuse, e.colour);
-                if (surface.no_specular) continue;
-                if (surface.exponent >= 0) {
-                    p.specular_whole(terms[li].specular, surface.exponent);
-                } else {
-                    p.specular_pow(terms[li].specular, e.shininess);
-                }
-            }
-        }
-        if (e.kr > 0) {
-            for (int k = 0; k < count; ++k) {
-                const V seen = reflection({p.px[k], p.py[k], p.pz[k]}, {p.nx[k], p.ny[k], p.nz[k]},
-                                          {p.dx[k], p.dy[k], p.dz[k]}, kMaxReflections, scratch);
-                p.add(k, seen * e.kr);
-            }
-        }
-        for (int k = 0; k < count; ++k) colours[k] = {p.r[k], p.g[k], p.b[k]};
+        const Real camera[kPacket] = {};
+        hit_colours(i, count, camera, camera, camera, dx, dy, dz, t, inside, kMaxReflections, scratch,
+                    colours);
     }
 
     // Per ellipsoid, the ellipsoid and the camera's terms in its unit space
@@ -312,9 +267,12 @@ public:
     // Any blocker will do, so the search stops at the first; it tries first the one that
     // blocked this light last on this thread (neighbouring pixels share their shadows).
     // Ellipsoid number skip (kNone for none) is not tried: the caller knows it cannot block.
+    // cell: the ray's cell in the light's buffer when the caller has found it
+    // (DirectionGrid::cells(), many rays at once), else -1.
     RT_ALWAYS_INLINE bool in_shadow(const V& point, const V& to_light, std::size_t light_index,
                                     TraceScratch<Real>& scratch,
-                                    std::uint32_t skip = TraceScratch<Real>::kNone) const {
+                                    std::uint32_t skip = TraceScratch<Real>::kNone,
+                                    std::int32_t cell = -1) const {
         const std::uint32_t last = scratch.last_occluder[light_index];
         if (last != TraceScratch<Real>::kNone && last != skip && blocks(last, point, to_light)) return true;
         const std::uint32_t* first;
@@ -322,7 +280,9 @@ public:
         if (use_grids_) {
             // The light buffer: the ellipsoids near the line from the light to the point.
             const DirectionGrid<C>& grid = light_grids_[light_index];
-            first = grid.list(C(point.x) - grid.x(), C(point.y) - grid.y(), C(point.z) - grid.z(), &end);
+            first = cell >= 0 ? grid.cell_list(cell, &end)
+                              : grid.list(C(point.x) - grid.x(), C(point.y) - grid.y(), C(point.z) - grid.z(),
+                                          &end);
         } else {
             first = shadow_candidates(point, to_light, light_index, scratch, &end);
         }
@@ -433,6 +393,107 @@ private:
             Real min_t, int reflections_left, const V& miss, TraceScratch<Real>& scratch) const {
         const Hit hit = nearest_hit(origin, terms, direction, min_t, scratch);
         return hit.ellipsoid == nullptr ? miss : shade(hit, origin, direction, reflections_left, scratch);
+    }
+
+    // shade() for up to kPacket rays that hit ellipsoid i, ray k from (ox, oy, oz)[k]
+    // along (dx, dy, dz)[k] at t[k] (hit_packet.h): the same operations lane by lane;
+    // shadow rays and the search for what a mirrored ray hits stay scalar, and the
+    // mirrored rays are shaded in packets again, grouped by the ellipsoid they hit.
+    void hit_colours(std::uint32_t i, int count, const Real* ox, const Real* oy, const Real* oz,
+                     const Real* dx, const Real* dy, const Real* dz, const Real* t, const bool* inside,
+                     int reflections_left, TraceScratch<Real>& scratch, V* colours) const {
+        const Surface& surface = surfaces_[i];
+        const Ellipsoid<Real>& e = ellipsoids_[i];
+        const bool reflects = e.kr > 0 && reflections_left > 0;
+        if (surface.no_lighting && !reflects) {  // shade() returns the ambient term
+            for (int k = 0; k < count; ++k) colours[k] = surface.ambient;
+            return;
+        }
+        HitPacket<Real> p;
+        p.load(count, ox, oy, oz, dx, dy, dz, t, inside);
+        p.start_colour(surface.ambient);
+        p.surface(e.centre, e.scale_squared);
+        if (!surface.no_lighting) {
+            p.self_terms(e.scale);
+            if (!surface.no_specular) p.viewer();
+            const LightTerms* terms = light_terms_.data() + std::size_t(i) * lights_.size();
+            for (std::size_t li = 0; li < lights_.size(); ++li) {
+                if (!p.light(lights_[li].position, kSelfSlack)) continue;  // behind every ray's point
+                // The lanes' cells in the light buffer at once: point - light = -(L - P)
+                // exactly, so these are the cells in_shadow() would find (in double or
+                // wider; float's buffers are looked up in double from the point).
+                std::int32_t cells[kPacket];
+                for (std::int32_t& c : cells) c = -1;
+                if constexpr (std::is_same_v<C, Real>) {
+                    if (use_grids_) {
+                        Real fx[kPacket], fy[kPacket], fz[kPacket];
+                        for (int k = 0; k < kPacket; ++k)
+                            fx[k] = -p.tx[k], fy[k] = -p.ty[k], fz[k] = -p.tz[k];
+                        light_grids_[li].template cells<kPacket>(fx, fy, fz, cells);
+                    }
+                }
+                for (int k = 0; k < count; ++k) {
+                    if (p.front[k] == 0) continue;
+                    const V point{p.px[k], p.py[k], p.pz[k]}, to_light{p.tx[k], p.ty[k], p.tz[k]};
+                    const bool shadowed =
+                        in_shadow(point, to_light, li, scratch,
+                                  p.self_clear[k] != 0 ? i : TraceScratch<Real>::kNone, cells[k]);
+                    p.lit[k] = shadowed ? Real(0) : Real(1);
+                }
+                p.add_diffuse(terms[li].diffuse, e.colour);
+                if (surface.no_specular) continue;
+                if (surface.exponent >= 0) {
+                    p.specular_whole(terms[li].specular, surface.exponent);
+                } else {
+                    p.specular_pow(terms[li].specular, e.shininess);
+                }
+            }
+        }
+        if (reflects) reflections(p, e.kr, reflections_left, scratch);
+        for (int k = 0; k < count; ++k) colours[k] = {p.r[k], p.g[k], p.b[k]};
+    }
+
+    // reflection() for the rays of a packet; adds seen * kr to each lane's colour.
+    void reflections(HitPacket<Real>& p, Real kr, int reflections_left, TraceScratch<Real>& scratch) const {
+        Real mx[kPacket], my[kPacket], mz[kPacket];
+        p.mirror(mx, my, mz);
+        std::uint32_t next[kPacket];
+        Real next_t[kPacket];
+        bool next_inside[kPacket];
+        for (int k = 0; k < p.count; ++k) {
+            const V point{p.px[k], p.py[k], p.pz[k]}, mirrored{mx[k], my[k], mz[k]};
+            const std::uint32_t* first = scratch.candidates.data();
+            const std::uint32_t* last =
+                first + bounds_.candidates(point, mirrored, scratch.candidates.data(), scratch.cull.data());
+            const Hit hit = closest(first, last, point, mirrored, Real(kReflectedRayMinT));
+            // A reflected ray that hits nothing returns black, unlike an eye ray.
+            next[k] = hit.ellipsoid == nullptr
+                          ? TraceScratch<Real>::kNone
+                          : static_cast<std::uint32_t>(hit.ellipsoid - ellipsoids_.data());
+            next_t[k] = hit.t, next_inside[k] = hit.inside;
+        }
+        V seen[kPacket] = {};
+        bool done[kPacket] = {};
+        for (int k = 0; k < p.count; ++k) {
+            if (done[k] || next[k] == TraceScratch<Real>::kNone) continue;
+            // The lanes whose mirrored rays hit the same ellipsoid, as one packet.
+            int lane[kPacket], n = 0;
+            Real gox[kPacket], goy[kPacket], goz[kPacket], gdx[kPacket], gdy[kPacket], gdz[kPacket],
+                gt[kPacket];
+            bool gin[kPacket];
+            for (int j = k; j < p.count; ++j) {
+                if (done[j] || next[j] != next[k]) continue;
+                done[j] = true, lane[n] = j;
+                gox[n] = p.px[j], goy[n] = p.py[j], goz[n] = p.pz[j];
+                gdx[n] = mx[j], gdy[n] = my[j], gdz[n] = mz[j], gt[n] = next_t[j], gin[n] = next_inside[j];
+                ++n;
+            }
+            V group[kPacket];
+            hit_colours(next[k], n, gox, goy, goz, gdx, gdy, gdz, gt, gin, reflections_left - 1, scratch,
+                        group);
+            for (int j = 0; j < n; ++j) seen[lane[j]] = group[j];
+        }
+        for (int k = 0; k < p.count; ++k) p.add(k, seen[k] * kr);
     }
 
     // The colour of the surface hit by origin + t direction.

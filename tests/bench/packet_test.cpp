@@ -67,10 +67,10 @@ long long differing_bytes(const rt::Scene& scene, int packet, int stride) {
                 for (std::size_t k = std::size_t(phase); k < hits.size(); k += std::size_t(stride))
                     if (hits[k].ellipsoid == e) on.push_back(&hits[k]);
             for (std::size_t first = 0; first < on.size(); first += std::size_t(packet)) {
-                Real dx[rt::kEyePacket], dy[rt::kEyePacket], dz[rt::kEyePacket], t[rt::kEyePacket];
-                bool inside[rt::kEyePacket];
-                std::uint8_t* out[rt::kEyePacket];
-                V colours[rt::kEyePacket];
+                Real dx[rt::kPacket], dy[rt::kPacket], dz[rt::kPacket], t[rt::kPacket];
+                bool inside[rt::kPacket];
+                std::uint8_t* out[rt::kPacket];
+                V colours[rt::kPacket];
                 int count = 0;
                 for (std::size_t k = first; k < on.size() && count < packet; ++k, ++count) {
                     dx[count] = on[k]->x, dy[count] = on[k]->y, dz[count] = on[k]->z, t[count] = on[k]->t;
@@ -95,7 +95,7 @@ long long differing_bytes(const rt::Scene& scene, int packet, int stride) {
 template <typename Real>
 bool packets_match(const std::string& name, const rt::Scene& scene) {
     bool all = true;
-    for (const int packet : {1, 3, rt::kEyePacket})
+    for (const int packet : {1, 3, rt::kPacket})
         for (const int stride : {1, 3}) {
             const long long d = differing_bytes<Real>(scene, packet, stride);
             if (d != 0)

@@ -1,8 +1,8 @@
-// The shading arithmetic of up to kEyePacket eye-ray hits on one ellipsoid, pixel k in
-// lane k of every array: the point, its normal, and per light L - P, N.L, R.V, the
-// specular power and the colour sums (SPEC section 5).
+// The shading arithmetic of up to kPacket ray hits on one ellipsoid, ray k in lane k of
+// every array: the point, its normal, and per light L - P, N.L, R.V, the specular power
+// and the colour sums (SPEC section 5), and the mirrored directions.
 //
-// WHY: Tracer::shade() does this one pixel at a time, a chain of dependent products,
+// WHY: Tracer::shade() does this one ray at a time, a chain of dependent products,
 // square roots and divisions with branches in between. Neighbouring pixels mostly see
 // the same ellipsoid, so here the same chain runs over the pixels as flat loops over
 // fixed-size arrays, which GCC and Clang turn into vector instructions (8 doubles per
@@ -11,7 +11,7 @@
 // ones do (no fused multiply-adds: CMakeLists.txt), so each pixel gets the same bits.
 // Where shade() skips a term (light behind, in shadow, R.V <= 0), the lane keeps its
 // sum by a select; no zero is added. Shadow rays branch per pixel and stay scalar
-// (Tracer::eye_hit_pixels()).
+// (Tracer::hit_colours()), and so does the search for what each mirrored ray hits.
 #pragma once
 
 #include <cmath>
@@ -21,13 +21,14 @@
 
 namespace rt {
 
-inline constexpr int kEyePacket = 8;
+inline constexpr int kPacket = 8;
 
 template <typename Real>
-struct EyePacket {
-    static constexpr int N = kEyePacket;
+struct HitPacket {
+    static constexpr int N = kPacket;
     int count = 0;
-    Real dx[N], dy[N], dz[N], t[N];  // the eye ray and its root
+    Real ox[N], oy[N], oz[N];        // the ray's origin
+    Real dx[N], dy[N], dz[N], t[N];  // its direction and root
     Real inside[N];                  // masks are 1 or 0 (bool arrays would keep loops scalar)
     Real px[N], py[N], pz[N];        // the hit point
     Real cx[N], cy[N], cz[N];        // point - centre
@@ -45,21 +46,23 @@ struct EyePacket {
     Real r[N], g[N], b[N];                 // the colour
 
     // The rays; lanes from count on repeat the last ray (their results are not used).
-    void load(int n, const Real* x, const Real* y, const Real* z, const Real* root, const bool* in) {
+    void load(int n, const Real* from_x, const Real* from_y, const Real* from_z, const Real* x, const Real* y,
+              const Real* z, const Real* root, const bool* in) {
         count = n;
         for (int k = 0; k < N; ++k) {
             const int from = k < n ? k : n - 1;
+            ox[k] = from_x[from], oy[k] = from_y[from], oz[k] = from_z[from];
             dx[k] = x[from], dy[k] = y[from], dz[k] = z[from], t[k] = root[from], inside[k] = mask(in[from]);
         }
     }
 
-    // shade(): point = origin + direction * t with origin (0, 0, 0); to_centre = point -
+    // shade(): point = origin + direction * t; to_centre = point -
     // centre; scaled = to_centre / s^2; scaled_length = length(scaled); normal = scaled *
     // (1 / scaled_length), negated when inside.
     void surface(const Vec3<Real>& centre, const Vec3<Real>& scale_squared) {
         using std::sqrt;
         for (int k = 0; k < N; ++k) {
-            px[k] = Real(0) + dx[k] * t[k], py[k] = Real(0) + dy[k] * t[k], pz[k] = Real(0) + dz[k] * t[k];
+            px[k] = ox[k] + dx[k] * t[k], py[k] = oy[k] + dy[k] * t[k], pz[k] = oz[k] + dz[k] * t[k];
             cx[k] = px[k] - centre.x, cy[k] = py[k] - centre.y, cz[k] = pz[k] - centre.z;
             const Real sx = cx[k] / scale_squared.x, sy = cy[k] / scale_squared.y,
                        sz = cz[k] / scale_squared.z;
@@ -154,6 +157,14 @@ struct EyePacket {
         for (int k = 0; k < N; ++k)
             result[k] = lit[k] != 0 && r_dot_v[k] > 0 ? pow(r_dot_v[k], exponent) : Real(0);
         add_specular(specular, r_dot_v, result);
+    }
+
+    // reflection(): mirrored = direction - normal * (2 * dot(normal, direction)).
+    void mirror(Real* x, Real* y, Real* z) const {
+        for (int k = 0; k < N; ++k) {
+            const Real twice = 2 * (nx[k] * dx[k] + ny[k] * dy[k] + nz[k] * dz[k]);
+            x[k] = dx[k] - nx[k] * twice, y[k] = dy[k] - ny[k] * twice, z[k] = dz[k] - nz[k] * twice;
+        }
     }
 
     // shade(): colour += seen * kr, for lane k.
