@@ -144,7 +144,7 @@ struct HitPacket {
         for (std::int32_t bits = exponent; bits != 0; bits >>= 1) {
             if (bits & 1)
                 for (int k = 0; k < N; ++k) result[k] *= base[k];
-            for (int k = 0; k < N; ++k) base[k] *= base[k];
+            for (Real& x : base) x *= x;
         }
         add_specular(specular, r_dot_v, result);
     }
