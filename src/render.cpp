@@ -5,6 +5,7 @@
 #include <thread>
 #include <vector>
 
+#include "raytracer/eye_rays.h"
 #include "raytracer/tracer.h"
 
 namespace rt {
@@ -59,8 +60,17 @@ Image render(const Scene& scene, unsigned threads, bool accelerate) {
     for (int c = 0; c < scene.columns; ++c)
         column_x[static_cast<std::size_t>(c)] = left + (right - left) * static_cast<Real>(c) / columns;
 
+    // The camera's terms per ellipsoid, for intersecting eye rays many columns at a time.
+    std::vector<Ellipsoid<Real>> ellipsoids;
+    std::vector<MappedOrigin<Real>> eye_origins;
+    for (std::size_t i = 0; i < scene.spheres.size(); ++i) {
+        ellipsoids.push_back(tracer.ellipsoid(i));
+        eye_origins.push_back(tracer.eye_origin(i));
+    }
+    const EyeRays<Real> eye_rays(ellipsoids, eye_origins, Tracer<Real>::eye_min_t());
+
     auto render_rows = [&](int first_row, int end_row, TraceScratch<Real>& scratch, std::vector<Span>& in_row,
-                           std::vector<std::uint32_t>& in_pixel) {
+                           std::vector<std::uint32_t>& in_pixel, EyeRowHits<Real>& hits) {
         for (int r = first_row; r < end_row; ++r) {
             std::uint8_t* const row_out = image.rgb.data() + static_cast<std::size_t>(r) * row_bytes;
             std::copy(background_row.begin(), background_row.end(), row_out);
@@ -78,14 +88,28 @@ Image render(const Scene& scene, unsigned threads, bool accelerate) {
             }
             // The top-left corner of the pixel, not its centre: the keys demand it.
             const Real y = top - (top - bottom) * static_cast<Real>(r) / rows;
+            if (!accelerate) {
+                // The reference: each pixel on its own, as the plain tracer does.
+                for (int c = lo; c <= hi; ++c) {
+                    std::size_t count = 0;
+                    for (const Span& span : in_row)
+                        if (span.first <= c && c <= span.last) in_pixel[count++] = span.ellipsoid;
+                    if (count == 0) continue;  // the background, already there
+                    const Real x = column_x[static_cast<std::size_t>(c)];
+                    tracer.eye_pixel({x, y, near_z}, in_pixel.data(), in_pixel.data() + count, scratch,
+                                     row_out + static_cast<std::size_t>(c) * 3);
+                }
+                continue;
+            }
+            // All columns of each span at once (eye_rays.h), then each hit pixel shaded.
+            EyeRays<Real>::clear(hits, lo, hi);
+            for (const Span& span : in_row)
+                eye_rays.intersect(hits, span.ellipsoid, span.first, span.last, column_x.data(), y, near_z);
             for (int c = lo; c <= hi; ++c) {
-                std::size_t count = 0;
-                for (const Span& span : in_row)
-                    if (span.first <= c && c <= span.last) in_pixel[count++] = span.ellipsoid;
-                if (count == 0) continue;  // the background, already there
-                const Real x = column_x[static_cast<std::size_t>(c)];
-                tracer.eye_pixel({x, y, near_z}, in_pixel.data(), in_pixel.data() + count, scratch,
-                                 row_out + static_cast<std::size_t>(c) * 3);
+                const auto column = static_cast<std::size_t>(c);
+                if (hits.ellipsoid[column] == EyeRowHits<Real>::kNone) continue;  // the background
+                tracer.eye_hit_pixel(hits.ellipsoid[column], hits.t[column], hits.inside[column] != 0,
+                                     {column_x[column], y, near_z}, scratch, row_out + column * 3);
             }
         }
     };
@@ -101,9 +125,10 @@ Image render(const Scene& scene, unsigned threads, bool accelerate) {
         TraceScratch<Real> scratch = tracer.make_scratch();
         std::vector<Span> in_row;
         std::vector<std::uint32_t> in_pixel(rects.size());
+        EyeRowHits<Real> hits(scene.columns);
         in_row.reserve(rects.size());
         for (int b = next_band++; b < bands; b = next_band++)
-            render_rows(b * band, std::min(scene.rows, (b + 1) * band), scratch, in_row, in_pixel);
+            render_rows(b * band, std::min(scene.rows, (b + 1) * band), scratch, in_row, in_pixel, hits);
     };
     std::vector<std::thread> pool;
     for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
