@@ -60,14 +60,19 @@ Image render(const Scene& scene, unsigned threads, bool accelerate) {
     for (int c = 0; c < scene.columns; ++c)
         column_x[static_cast<std::size_t>(c)] = left + (right - left) * static_cast<Real>(c) / columns;
 
-    // The camera's terms per ellipsoid, for intersecting eye rays many columns at a time.
+    // The camera's terms per ellipsoid, for intersecting eye rays many columns at a time
+    // (not used by the plain path).
     std::vector<Ellipsoid<Real>> ellipsoids;
     std::vector<MappedOrigin<Real>> eye_origins;
-    for (std::size_t i = 0; i < scene.spheres.size(); ++i) {
+    std::vector<int> first_columns, last_columns;
+    for (std::size_t i = 0; accelerate && i < scene.spheres.size(); ++i) {
         ellipsoids.push_back(tracer.ellipsoid(i));
         eye_origins.push_back(tracer.eye_origin(i));
+        first_columns.push_back(rects[i].first_column);
+        last_columns.push_back(rects[i].last_column);
     }
-    const EyeRays<Real> eye_rays(ellipsoids, eye_origins, Tracer<Real>::eye_min_t());
+    const EyeRays<Real> eye_rays(ellipsoids, eye_origins, Tracer<Real>::eye_min_t(), column_x, first_columns,
+                                 last_columns);
 
     auto render_rows = [&](int first_row, int end_row, TraceScratch<Real>& scratch, std::vector<Span>& in_row,
                            std::vector<std::uint32_t>& in_pixel, EyeRowHits<Real>& hits) {

@@ -48,17 +48,36 @@ template <typename Real>
 class EyeRays {
 public:
     // ellipsoids[i] and origins[i] (mapped_origin() of the camera) for every ellipsoid;
-    // min_t as Tracer::eye_min_t().
+    // min_t as Tracer::eye_min_t(); column_x[c] the x of column c's eye ray; columns
+    // [first_column[i], last_column[i]] the only ones ever asked of ellipsoid i.
     EyeRays(const std::vector<Ellipsoid<Real>>& ellipsoids, const std::vector<MappedOrigin<Real>>& origins,
-            Real min_t)
+            Real min_t, const std::vector<Real>& column_x, const std::vector<int>& first_column,
+            const std::vector<int>& last_column)
         : min_t_(min_t) {
         terms_.reserve(ellipsoids.size());
+        std::size_t table_size = 0;
         for (std::size_t i = 0; i < ellipsoids.size(); ++i) {
             using std::abs;
             const Vec3<Real>& o = origins[i].o;
             const Real distance = std::max(abs(o.x), std::max(abs(o.y), abs(o.z)));
-            terms_.push_back({ellipsoids[i].scale, o, origins[i].c,
-                              -Real(4) * scene_epsilon<Real>() * (Real(1) + distance)});
+            Terms terms{ellipsoids[i].scale, o,
+                        origins[i].c,        -Real(4) * scene_epsilon<Real>() * (Real(1) + distance),
+                        first_column[i],     0};
+            // The column terms d.x = x / s.x, d.x^2 and o'.x d.x per ellipsoid and column,
+            // unless the tables would grow large (then they are computed per row).
+            const std::size_t width =
+                first_column[i] <= last_column[i] ? std::size_t(last_column[i] - first_column[i] + 1) : 0;
+            terms.table = table_size + width <= kMaxTable ? table_size : kNoTable;
+            if (terms.table != kNoTable) {
+                table_size += width;
+                for (int c = first_column[i]; c <= last_column[i]; ++c) {
+                    const Real dx = column_x[static_cast<std::size_t>(c)] / terms.scale.x;
+                    dx_.push_back(dx);
+                    dx_dx_.push_back(dx * dx);
+                    ox_dx_.push_back(o.x * dx);
+                }
+            }
+            terms_.push_back(terms);
         }
     }
 
@@ -75,21 +94,44 @@ public:
     // increasing order, as Tracer::closest() tries them.
     void intersect(EyeRowHits<Real>& hits, std::uint32_t i, int first, int last, const Real* column_x, Real y,
                    Real near_z) const {
+        const Terms& e = terms_[i];
+        if (e.table != kNoTable) {
+            const std::ptrdiff_t at = std::ptrdiff_t(e.table) - e.first_column;
+            const Real* const dx = dx_.data() + at;
+            const Real* const dx_dx = dx_dx_.data() + at;
+            const Real* const ox_dx = ox_dx_.data() + at;
+            intersect(hits, i, first, last, y, near_z,
+                      [&](int c, Real& x, Real& xx, Real& ox) { x = dx[c], xx = dx_dx[c], ox = ox_dx[c]; });
+        } else {
+            const Real sx = e.scale.x, o_x = e.o.x;
+            intersect(hits, i, first, last, y, near_z, [&](int c, Real& x, Real& xx, Real& ox) {
+                x = column_x[c] / sx, xx = x * x, ox = o_x * x;
+            });
+        }
+    }
+
+private:
+    // The loop itself; column_terms(c, dx, dx_dx, ox_dx) gives d.x = x / s.x, d.x^2 and
+    // o'.x d.x of column c.
+    template <typename ColumnTerms>
+    void intersect(EyeRowHits<Real>& hits, std::uint32_t i, int first, int last, Real y, Real near_z,
+                   ColumnTerms column_terms) const {
         using std::sqrt;
         const Terms& e = terms_[i];
         // The row's and the ellipsoid's parts of d = direction / s, d.d and o'.d.
         const Real dy = y / e.scale.y, dz = near_z / e.scale.z;
         const Real dy_dy = dy * dy, dz_dz = dz * dz;
         const Real oy_dy = e.o.y * dy, oz_dz = e.o.z * dz;
-        const Real ox = e.o.x, oy = e.o.y, oz = e.o.z, sx = e.scale.x, c_term = e.c;
+        const Real ox = e.o.x, oy = e.o.y, oz = e.o.z, c_term = e.c;
         const Real tangent = e.tangent, min_t = min_t_;
         Real* const best_t = hits.t.data();
         std::uint32_t* const best = hits.ellipsoid.data();
         std::uint8_t* const best_inside = hits.inside.data();
         for (int c = first; c <= last; ++c) {
-            const Real dx = column_x[c] / sx;
-            const Real a = dx * dx + dy_dy + dz_dz;
-            const Real b = ox * dx + oy_dy + oz_dz;
+            Real dx, dx_dx, ox_dx;
+            column_terms(c, dx, dx_dx, ox_dx);
+            const Real a = dx_dx + dy_dy + dz_dz;
+            const Real b = ox_dx + oy_dy + oz_dz;
             const Real k = b / a;
             const Real lx = ox - dx * k, ly = oy - dy * k, lz = oz - dz * k;
             Real unit_disc = Real(1) - (lx * lx + ly * ly + lz * lz);
@@ -112,13 +154,17 @@ public:
         }
     }
 
-private:
+    static constexpr std::size_t kMaxTable = std::size_t(1) << 18;  // entries: 3 x 2 MiB in double
+    static constexpr std::size_t kNoTable = ~std::size_t(0);
     struct Terms {
         Vec3<Real> scale, o;  // s and o' = (camera - C) / s
         Real c;               // o'.o' - 1
         Real tangent;         // intersect_mapped()'s tangent limit on 1 - l.l
+        int first_column;     // of the tables
+        std::size_t table;    // where its columns start in the tables, or kNoTable
     };
     std::vector<Terms> terms_;
+    std::vector<Real> dx_, dx_dx_, ox_dx_;  // per ellipsoid and column, see the constructor
     Real min_t_;
 };
 
