@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <thread>
 #include <vector>
 
@@ -21,6 +22,23 @@ struct Span {
     std::uint32_t ellipsoid;
     int first, last;
 };
+
+// One thread's working memory, so that no row or pixel allocates.
+template <typename Real>
+struct Workspace {
+    TraceScratch<Real> scratch;
+    std::vector<Span> in_row;             // the row's ellipsoids
+    std::vector<std::uint32_t> in_pixel;  // the pixel's ellipsoids (plain path)
+    EyeRowHits<Real> hits;                // each column's nearest hit (eye_rays.h)
+
+    Workspace(const Tracer<Real>& tracer, std::size_t ellipsoids, int columns)
+        : scratch(tracer.make_scratch()), in_pixel(ellipsoids), hits(columns) {
+        in_row.reserve(ellipsoids);
+    }
+};
+
+// How long the calling thread renders alone before it calls in the other cores.
+constexpr std::chrono::microseconds kHelpAfter{1000};
 }  // namespace
 
 template <typename Real>
@@ -74,8 +92,11 @@ Image render(const Scene& scene, unsigned threads, bool accelerate) {
     const EyeRays<Real> eye_rays(ellipsoids, eye_origins, Tracer<Real>::eye_min_t(), column_x, first_columns,
                                  last_columns);
 
-    auto render_rows = [&](int first_row, int end_row, TraceScratch<Real>& scratch, std::vector<Span>& in_row,
-                           std::vector<std::uint32_t>& in_pixel, EyeRowHits<Real>& hits) {
+    auto render_rows = [&](int first_row, int end_row, Workspace<Real>& work) {
+        TraceScratch<Real>& scratch = work.scratch;
+        std::vector<Span>& in_row = work.in_row;
+        std::vector<std::uint32_t>& in_pixel = work.in_pixel;
+        EyeRowHits<Real>& hits = work.hits;
         for (int r = first_row; r < end_row; ++r) {
             std::uint8_t* const row_out = image.rgb.data() + static_cast<std::size_t>(r) * row_bytes;
             std::copy(background_row.begin(), background_row.end(), row_out);
@@ -123,21 +144,35 @@ Image render(const Scene& scene, unsigned threads, bool accelerate) {
     // draws cheap rows (background) takes more of them and none idles at the end.
     const int band = 4;
     const int bands = (scene.rows + band - 1) / band;
-    if (threads == 0) threads = default_thread_count();
-    threads = std::min<unsigned>(threads, static_cast<unsigned>(bands));
     std::atomic<int> next_band{0};
-    auto worker = [&] {
-        TraceScratch<Real> scratch = tracer.make_scratch();
-        std::vector<Span> in_row;
-        std::vector<std::uint32_t> in_pixel(rects.size());
-        EyeRowHits<Real> hits(scene.columns);
-        in_row.reserve(rects.size());
-        for (int b = next_band++; b < bands; b = next_band++)
-            render_rows(b * band, std::min(scene.rows, (b + 1) * band), scratch, in_row, in_pixel, hits);
+    // Renders bands until none is left; after_band(b) after each.
+    auto take_bands = [&](Workspace<Real>& work, auto after_band) {
+        for (int b = next_band++; b < bands; b = next_band++) {
+            render_rows(b * band, std::min(scene.rows, (b + 1) * band), work);
+            after_band(b);
+        }
+    };
+    auto helper = [&] {
+        Workspace<Real> work(tracer, rects.size(), scene.columns);
+        take_bands(work, [](int) {});
     };
     std::vector<std::thread> pool;
-    for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
-    worker();  // the calling thread works too
+    auto call_helpers = [&](unsigned count) {
+        for (unsigned t = 1; t < count; ++t) pool.emplace_back(helper);
+    };
+    // By default (threads = 0) the calling thread starts alone and calls in the other cores
+    // only when the image takes longer than kHelpAfter: most 400x400 course scenes are
+    // done before a second thread would have paid for its start (measured in
+    // docs/speed.md), and the core count (a file read on Linux) is not asked for them.
+    if (threads != 0) call_helpers(std::min<unsigned>(threads, static_cast<unsigned>(bands)));
+    Workspace<Real> work(tracer, rects.size(), scene.columns);
+    const auto start = std::chrono::steady_clock::now();
+    take_bands(work, [&](int b) {
+        if (threads == 0 && std::chrono::steady_clock::now() - start >= kHelpAfter) {
+            threads = std::min<unsigned>(default_thread_count(), static_cast<unsigned>(bands - b));  // >= 1
+            call_helpers(threads);
+        }
+    });
     for (std::thread& t : pool) t.join();
     return image;
 }
