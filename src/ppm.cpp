@@ -70,43 +70,77 @@ std::string check_target(const char* file_name, const fs::path& target) {
 
 template <typename WriteBody>
 std::string save_atomically(const char* file_name, WriteBody write_body) {
-    if (file_name == nullptr || *file_name == '\0') return "no file name given";
-    // u8path may throw on names that are not valid UTF-8 (on Windows).
-    try {
-        const fs::path target = fs::u8path(file_name);
-        if (std::string error = check_target(file_name, target); !error.empty()) return error;
-        const fs::path temporary = temporary_name_for(target);
-        {
-            std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-            if (!out) return cannot_create(file_name, target);
-            write_body(out);
-            out.close();
-            if (!out) {
-                std::error_code ignored;
-                fs::remove(temporary, ignored);
-                return "'" + std::string(file_name) + "' could not be written in full (is the disk full?)";
-            }
-        }
-        std::string error;
-        if (!replace_file(temporary, target, error)) {
-            std::error_code ignored;
-            fs::remove(temporary, ignored);
-            return "'" + std::string(file_name) + "' cannot be replaced: " + error;
-        }
-        return {};
-    } catch (const std::exception& e) {
-        return "'" + std::string(file_name) + "' is not a usable file name: " + e.what();
-    }
+    PendingFile file(file_name);
+    if (!file.error().empty()) return file.error();
+    write_body(file.stream());
+    return file.commit();
+}
+
+void write_P6(std::ostream& out, int width, int height, const unsigned char* pixels) {
+    out << "P6\n" << width << ' ' << height << "\n255\n";
+    out.write(reinterpret_cast<const char*>(pixels),
+              static_cast<std::streamsize>(width) * static_cast<std::streamsize>(height) * 3);
 }
 
 }  // namespace
 
+PendingFile::PendingFile(const char* file_name) : name_(file_name == nullptr ? "" : file_name) {
+    if (name_.empty()) {
+        error_ = "no file name given";
+        return;
+    }
+    // u8path may throw on names that are not valid UTF-8 (on Windows).
+    try {
+        target_ = fs::u8path(name_);
+        if (error_ = check_target(name_.c_str(), target_); !error_.empty()) return;
+        // Creating a file beside the target is the only sure test that it can be
+        // written: permissions, read-only media and ACLs all have their say.
+        temporary_ = temporary_name_for(target_);
+        out_.open(temporary_, std::ios::binary | std::ios::trunc);
+        if (!out_) {
+            error_ = cannot_create(name_, target_);
+            return;
+        }
+        pending_ = true;
+    } catch (const std::exception& e) {
+        error_ = "'" + name_ + "' is not a usable file name: " + e.what();
+    }
+}
+
+PendingFile::~PendingFile() { discard(); }
+
+void PendingFile::discard() {
+    if (!pending_) return;
+    pending_ = false;
+    out_.close();
+    std::error_code ignored;
+    fs::remove(temporary_, ignored);
+}
+
+std::string PendingFile::commit() {
+    if (!pending_) return error_.empty() ? "'" + name_ + "' was already written" : error_;
+    out_.close();
+    if (!out_) {
+        discard();
+        return "'" + name_ + "' could not be written in full (is the disk full?)";
+    }
+    std::string error;
+    if (!replace_file(temporary_, target_, error)) {
+        discard();
+        return "'" + name_ + "' cannot be replaced: " + error;
+    }
+    pending_ = false;
+    return {};
+}
+
+std::string save_imageP6(PendingFile& file, int width, int height, const unsigned char* pixels) {
+    if (!file.error().empty()) return file.error();
+    write_P6(file.stream(), width, height, pixels);
+    return file.commit();
+}
+
 std::string save_imageP6(int width, int height, const char* file_name, const unsigned char* pixels) {
-    return save_atomically(file_name, [&](std::ofstream& out) {
-        out << "P6\n" << width << ' ' << height << "\n255\n";
-        out.write(reinterpret_cast<const char*>(pixels),
-                  static_cast<std::streamsize>(width) * static_cast<std::streamsize>(height) * 3);
-    });
+    return save_atomically(file_name, [&](std::ofstream& out) { write_P6(out, width, height, pixels); });
 }
 
 std::string save_imageP3(int width, int height, const char* file_name, const unsigned char* pixels) {
@@ -121,23 +155,7 @@ std::string save_imageP3(int width, int height, const char* file_name, const uns
     });
 }
 
-std::string check_writable(const char* file_name) {
-    if (file_name == nullptr || *file_name == '\0') return "no file name given";
-    try {
-        const fs::path target = fs::u8path(file_name);
-        if (std::string error = check_target(file_name, target); !error.empty()) return error;
-        // Creating (and removing) a file beside the target is the only sure test:
-        // permissions, read-only media and ACLs all have their say.
-        const fs::path temporary = temporary_name_for(target);
-        if (!std::ofstream(temporary, std::ios::binary | std::ios::trunc))
-            return cannot_create(file_name, target);
-        std::error_code ignored;
-        fs::remove(temporary, ignored);
-        return {};
-    } catch (const std::exception& e) {
-        return "'" + std::string(file_name) + "' is not a usable file name: " + e.what();
-    }
-}
+std::string check_writable(const char* file_name) { return PendingFile(file_name).error(); }
 
 bool read_ppm(const std::string& file_name, Image& image, std::string& error) {
     std::ifstream in(fs::u8path(file_name), std::ios::binary);
