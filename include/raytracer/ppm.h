@@ -4,8 +4,10 @@
 // write a temporary file beside the target and rename it into place when complete.
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <string>
 
 #include "raytracer/image.h"
@@ -26,8 +28,11 @@ public:
 
     // Why the temporary file could not be created; empty when it was.
     const std::string& error() const { return error_; }
-    // Where to write the contents (only when error() is empty).
-    std::ofstream& stream() { return out_; }
+    // Announces the final size, so that the file system allocates it at once: a hint,
+    // ignored where unsupported (see ppm.cpp for why it pays).
+    void expect_size(std::uint64_t bytes);
+    // Appends the bytes (only when error() is empty); a failure is reported by commit().
+    void write(const void* data, std::size_t size);
     // Closes the temporary file and moves it onto the target. Returns an empty string on
     // success, else what went wrong; the temporary is removed either way.
     std::string commit();
@@ -37,9 +42,9 @@ private:
 
     std::string name_;  // as given, for messages
     std::filesystem::path target_, temporary_;
-    std::ofstream out_;
+    std::FILE* file_ = nullptr;  // the temporary, while ours
+    bool write_failed_ = false;
     std::string error_;
-    bool pending_ = false;  // the temporary exists and is still ours to remove
 };
 
 // Writes a P6 image into a pending file (its error() must be empty) and commits it.
