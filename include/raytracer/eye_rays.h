@@ -36,7 +36,9 @@ struct EyeRowHits {
     static constexpr std::uint32_t kNone = 0xFFFFFFFFU;
     std::vector<Real> t;                   // NaN until a hit is accepted
     std::vector<std::uint32_t> ellipsoid;  // kNone until a hit is accepted
-    std::vector<std::uint8_t> inside;      // the far root was taken
+    // The far root was taken (0 or 1). As wide as the index: with mixed widths GCC's
+    // vector code packs and unpacks the lanes (2.5 % more instructions on the course scenes).
+    std::vector<std::uint32_t> inside;
 
     explicit EyeRowHits(int columns)
         : t(static_cast<std::size_t>(columns)),
@@ -126,7 +128,7 @@ private:
         const Real tangent = e.tangent, min_t = min_t_;
         Real* const best_t = hits.t.data();
         std::uint32_t* const best = hits.ellipsoid.data();
-        std::uint8_t* const best_inside = hits.inside.data();
+        std::uint32_t* const best_inside = hits.inside.data();
         for (int c = first; c <= last; ++c) {
             Real dx, dx_dx, ox_dx;
             column_terms(c, dx, dx_dx, ox_dx);
@@ -150,7 +152,7 @@ private:
             const bool accept = !miss && t > min_t && !(t >= best_t[c]);
             best_t[c] = accept ? t : best_t[c];
             best[c] = accept ? i : best[c];
-            best_inside[c] = accept ? std::uint8_t(inside) : best_inside[c];
+            best_inside[c] = accept ? std::uint32_t(inside) : best_inside[c];
         }
     }
 
