@@ -37,8 +37,9 @@ struct Workspace {
     }
 };
 
-// How long the calling thread renders alone before it calls in the other cores.
-constexpr std::chrono::microseconds kHelpAfter{1000};
+// By default the other cores are called in only when the rest of the image would take
+// the calling thread longer than this alone (see render()).
+constexpr std::chrono::microseconds kWorthHelping{3000};
 }  // namespace
 
 template <typename Real>
@@ -154,24 +155,31 @@ Image render(const Scene& scene, unsigned threads, bool accelerate) {
             after_band(b);
         }
     };
-    auto helper = [&] {
-        Workspace<Real> work(tracer, rects.size(), scene.columns);
-        take_bands(work, [](int) {});
-    };
+    // Each helper's working memory is made here, so that a helper thread allocates
+    // nothing (its first allocation would set up a malloc arena of its own).
+    std::vector<Workspace<Real>> helper_work;
     std::vector<std::thread> pool;
     auto call_helpers = [&](unsigned count) {
-        for (unsigned t = 1; t < count; ++t) pool.emplace_back(helper);
+        helper_work.reserve(count);  // no reallocation: the helpers hold references
+        for (unsigned t = 1; t < count; ++t) {
+            Workspace<Real>& work = helper_work.emplace_back(tracer, rects.size(), scene.columns);
+            pool.emplace_back([&take_bands, &work] { take_bands(work, [](int) {}); });
+        }
     };
-    // By default (threads = 0) the calling thread starts alone and calls in the other cores
-    // only when the image takes longer than kHelpAfter: most 400x400 course scenes are
-    // done before a second thread would have paid for its start (measured in
-    // docs/speed.md), and the core count (a file read on Linux) is not asked for them.
+    // By default (threads = 0) the calling thread starts alone and calls in the other
+    // cores only when, at its pace so far, the rest of the image would take it longer
+    // than kWorthHelping: at 400x400 the course scenes are done sooner than a second
+    // thread pays on this shared machine (a helper that is descheduled holds up the
+    // end of the image; measured in docs/speed.md), and their core count (a file read
+    // on Linux) is never asked.
     if (threads != 0) call_helpers(std::min<unsigned>(threads, static_cast<unsigned>(bands)));
     Workspace<Real> work(tracer, rects.size(), scene.columns);
     const auto start = std::chrono::steady_clock::now();
     take_bands(work, [&](int b) {
-        if (threads == 0 && std::chrono::steady_clock::now() - start >= kHelpAfter) {
-            threads = std::min<unsigned>(default_thread_count(), static_cast<unsigned>(bands - b));  // >= 1
+        const int done = b + 1, left = bands - done;  // alone, this thread has done bands 0..b
+        if (threads == 0 && left > 0 &&
+            (std::chrono::steady_clock::now() - start) * left >= kWorthHelping * done) {
+            threads = std::min<unsigned>(default_thread_count(), static_cast<unsigned>(left + 1));
             call_helpers(threads);
         }
     });
