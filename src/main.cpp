@@ -88,11 +88,13 @@ int main(int argc, char** argv) {
     const std::string scene_file = argv[1];
     try {
         const rt::Scene scene = rt::load_scene(scene_file);
-        // Find out that the image cannot be written before spending the render on it.
-        std::string error = rt::check_writable(scene.output.c_str());
+        // The file is created (as a temporary) before the render, so that an unwritable
+        // OUTPUT is reported before the render is spent on it; it is removed on any error.
+        rt::PendingFile output(scene.output.c_str());
+        std::string error = output.error();
         if (error.empty()) {
             const rt::Image image = rt::render<double>(scene, threads);
-            error = rt::save_imageP6(image.width, image.height, scene.output.c_str(), image.rgb.data());
+            error = rt::save_imageP6(output, image.width, image.height, image.rgb.data());
         }
         if (!error.empty()) {
             std::fprintf(stderr, "%s:%d: error: OUTPUT %s, expected a writable file path\n",

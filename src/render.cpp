@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <thread>
 #include <vector>
 
+#include "raytracer/eye_rays.h"
 #include "raytracer/tracer.h"
 
 namespace rt {
@@ -20,6 +22,24 @@ struct Span {
     std::uint32_t ellipsoid;
     int first, last;
 };
+
+// One thread's working memory, so that no row or pixel allocates.
+template <typename Real>
+struct Workspace {
+    TraceScratch<Real> scratch;
+    std::vector<Span> in_row;             // the row's ellipsoids
+    std::vector<std::uint32_t> in_pixel;  // the pixel's ellipsoids (plain path)
+    EyeRowHits<Real> hits;                // each column's nearest hit (eye_rays.h)
+
+    Workspace(const Tracer<Real>& tracer, std::size_t ellipsoids, int columns)
+        : scratch(tracer.make_scratch()), in_pixel(ellipsoids), hits(columns) {
+        in_row.reserve(ellipsoids);
+    }
+};
+
+// By default the other cores are called in only when the rest of the image would take
+// the calling thread longer than this alone (see render()).
+constexpr std::chrono::microseconds kWorthHelping{3000};
 }  // namespace
 
 template <typename Real>
@@ -28,7 +48,6 @@ Image render(const Scene& scene, unsigned threads, bool accelerate) {
     Image image;
     image.width = scene.columns;
     image.height = scene.rows;
-    image.rgb.resize(static_cast<std::size_t>(scene.columns) * static_cast<std::size_t>(scene.rows) * 3);
 
     const Real left = static_cast<Real>(scene.left), right = static_cast<Real>(scene.right);
     const Real bottom = static_cast<Real>(scene.bottom), top = static_cast<Real>(scene.top);
@@ -46,12 +65,16 @@ Image render(const Scene& scene, unsigned threads, bool accelerate) {
     const Vec3<Real> back = tracer.background();
     const std::uint8_t background[3] = {to_byte(back.x), to_byte(back.y), to_byte(back.z)};
 
-    // A whole row of background, copied over each row before its traced pixels: most
-    // pixels of the course scenes see no ellipsoid, and a copy costs far less than a
-    // per-pixel test (measured in docs/speed.md).
+    // The image starts as rows of background, written once (not zero-filled first), and
+    // only traced pixels are written over: most pixels of the course scenes see no
+    // ellipsoid, and a copy costs far less than a per-pixel test (measured in
+    // docs/speed.md).
     const std::size_t row_bytes = static_cast<std::size_t>(scene.columns) * 3;
     std::vector<std::uint8_t> background_row(row_bytes);
     for (std::size_t i = 0; i < row_bytes; ++i) background_row[i] = background[i % 3];
+    image.rgb.reserve(row_bytes * static_cast<std::size_t>(scene.rows));
+    for (int r = 0; r < scene.rows; ++r)
+        image.rgb.insert(image.rgb.end(), background_row.begin(), background_row.end());
 
     // Each column's x on the near plane, computed once instead of per row (the same
     // operations, so the same bits).
@@ -59,11 +82,27 @@ Image render(const Scene& scene, unsigned threads, bool accelerate) {
     for (int c = 0; c < scene.columns; ++c)
         column_x[static_cast<std::size_t>(c)] = left + (right - left) * static_cast<Real>(c) / columns;
 
-    auto render_rows = [&](int first_row, int end_row, TraceScratch<Real>& scratch, std::vector<Span>& in_row,
-                           std::vector<std::uint32_t>& in_pixel) {
+    // The camera's terms per ellipsoid, for intersecting eye rays many columns at a time
+    // (not used by the plain path).
+    std::vector<Ellipsoid<Real>> ellipsoids;
+    std::vector<MappedOrigin<Real>> eye_origins;
+    std::vector<int> first_columns, last_columns;
+    for (std::size_t i = 0; accelerate && i < scene.spheres.size(); ++i) {
+        ellipsoids.push_back(tracer.ellipsoid(i));
+        eye_origins.push_back(tracer.eye_origin(i));
+        first_columns.push_back(rects[i].first_column);
+        last_columns.push_back(rects[i].last_column);
+    }
+    const EyeRays<Real> eye_rays(ellipsoids, eye_origins, Tracer<Real>::eye_min_t(), column_x, first_columns,
+                                 last_columns);
+
+    auto render_rows = [&](int first_row, int end_row, Workspace<Real>& work) {
+        TraceScratch<Real>& scratch = work.scratch;
+        std::vector<Span>& in_row = work.in_row;
+        std::vector<std::uint32_t>& in_pixel = work.in_pixel;
+        EyeRowHits<Real>& hits = work.hits;
         for (int r = first_row; r < end_row; ++r) {
             std::uint8_t* const row_out = image.rgb.data() + static_cast<std::size_t>(r) * row_bytes;
-            std::copy(background_row.begin(), background_row.end(), row_out);
             in_row.clear();
             int lo = scene.columns, hi = -1;  // the columns some ellipsoid may cover
             const double row_y = scene.top - (scene.top - scene.bottom) * r / scene.rows;
@@ -78,14 +117,28 @@ Image render(const Scene& scene, unsigned threads, bool accelerate) {
             }
             // The top-left corner of the pixel, not its centre: the keys demand it.
             const Real y = top - (top - bottom) * static_cast<Real>(r) / rows;
+            if (!accelerate) {
+                // The reference: each pixel on its own, as the plain tracer does.
+                for (int c = lo; c <= hi; ++c) {
+                    std::size_t count = 0;
+                    for (const Span& span : in_row)
+                        if (span.first <= c && c <= span.last) in_pixel[count++] = span.ellipsoid;
+                    if (count == 0) continue;  // the background, already there
+                    const Real x = column_x[static_cast<std::size_t>(c)];
+                    tracer.eye_pixel({x, y, near_z}, in_pixel.data(), in_pixel.data() + count, scratch,
+                                     row_out + static_cast<std::size_t>(c) * 3);
+                }
+                continue;
+            }
+            // All columns of each span at once (eye_rays.h), then each hit pixel shaded.
+            EyeRays<Real>::clear(hits, lo, hi);
+            for (const Span& span : in_row)
+                eye_rays.intersect(hits, span.ellipsoid, span.first, span.last, column_x.data(), y, near_z);
             for (int c = lo; c <= hi; ++c) {
-                std::size_t count = 0;
-                for (const Span& span : in_row)
-                    if (span.first <= c && c <= span.last) in_pixel[count++] = span.ellipsoid;
-                if (count == 0) continue;  // the background, already there
-                const Real x = column_x[static_cast<std::size_t>(c)];
-                tracer.eye_pixel({x, y, near_z}, in_pixel.data(), in_pixel.data() + count, scratch,
-                                 row_out + static_cast<std::size_t>(c) * 3);
+                const auto column = static_cast<std::size_t>(c);
+                if (hits.ellipsoid[column] == EyeRowHits<Real>::kNone) continue;  // the background
+                tracer.eye_hit_pixel(hits.ellipsoid[column], hits.t[column], hits.inside[column] != 0,
+                                     {column_x[column], y, near_z}, scratch, row_out + column * 3);
             }
         }
     };
@@ -94,20 +147,42 @@ Image render(const Scene& scene, unsigned threads, bool accelerate) {
     // draws cheap rows (background) takes more of them and none idles at the end.
     const int band = 4;
     const int bands = (scene.rows + band - 1) / band;
-    if (threads == 0) threads = default_thread_count();
-    threads = std::min<unsigned>(threads, static_cast<unsigned>(bands));
     std::atomic<int> next_band{0};
-    auto worker = [&] {
-        TraceScratch<Real> scratch = tracer.make_scratch();
-        std::vector<Span> in_row;
-        std::vector<std::uint32_t> in_pixel(rects.size());
-        in_row.reserve(rects.size());
-        for (int b = next_band++; b < bands; b = next_band++)
-            render_rows(b * band, std::min(scene.rows, (b + 1) * band), scratch, in_row, in_pixel);
+    // Renders bands until none is left; after_band(b) after each.
+    auto take_bands = [&](Workspace<Real>& work, auto after_band) {
+        for (int b = next_band++; b < bands; b = next_band++) {
+            render_rows(b * band, std::min(scene.rows, (b + 1) * band), work);
+            after_band(b);
+        }
     };
+    // Each helper's working memory is made here, so that a helper thread allocates
+    // nothing (its first allocation would set up a malloc arena of its own).
+    std::vector<Workspace<Real>> helper_work;
     std::vector<std::thread> pool;
-    for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
-    worker();  // the calling thread works too
+    auto call_helpers = [&](unsigned count) {
+        helper_work.reserve(count);  // no reallocation: the helpers hold references
+        for (unsigned t = 1; t < count; ++t) {
+            Workspace<Real>& work = helper_work.emplace_back(tracer, rects.size(), scene.columns);
+            pool.emplace_back([&take_bands, &work] { take_bands(work, [](int) {}); });
+        }
+    };
+    // By default (threads = 0) the calling thread starts alone and calls in the other
+    // cores only when, at its pace so far, the rest of the image would take it longer
+    // than kWorthHelping: at 400x400 the course scenes are done sooner than a second
+    // thread pays on this shared machine (a helper that is descheduled holds up the
+    // end of the image; measured in docs/speed.md), and their core count (a file read
+    // on Linux) is never asked.
+    if (threads != 0) call_helpers(std::min<unsigned>(threads, static_cast<unsigned>(bands)));
+    Workspace<Real> work(tracer, rects.size(), scene.columns);
+    const auto start = std::chrono::steady_clock::now();
+    take_bands(work, [&](int b) {
+        const int done = b + 1, left = bands - done;  // alone, this thread has done bands 0..b
+        if (threads == 0 && left > 0 &&
+            (std::chrono::steady_clock::now() - start) * left >= kWorthHelping * done) {
+            threads = std::min<unsigned>(default_thread_count(), static_cast<unsigned>(left + 1));
+            call_helpers(threads);
+        }
+    });
     for (std::thread& t : pool) t.join();
     return image;
 }

@@ -82,6 +82,36 @@ TEST(an_unwritable_path_fails_and_leaves_nothing) {
     CHECK_EQ(dir.entries(), 1U);
 }
 
+// The file main.cpp creates before the render: the temporary exists while pending, the
+// target appears only at commit, and a file never committed (an error or an exception
+// during the render) leaves nothing, not even the temporary, and no old image harmed.
+TEST(a_pending_file_appears_only_when_committed) {
+    ScratchFolder dir;
+    {
+        std::ofstream old(dir.file("a.ppm"), std::ios::binary);
+        old << "old";
+    }
+    {
+        rt::PendingFile file(dir.file("a.ppm").c_str());
+        CHECK_EQ(file.error(), std::string());
+        CHECK_EQ(dir.entries(), 2U);  // the old image and the temporary
+        file.write("abc", 3);
+    }  // not committed
+    CHECK_EQ(dir.entries(), 1U);
+    CHECK_EQ(contents(dir.file("a.ppm")), std::string("old"));
+    {
+        rt::PendingFile file(dir.file("a.ppm").c_str());
+        CHECK_EQ(rt::save_imageP6(file, 2, 2, kPixels), std::string());
+        CHECK(!file.commit().empty());  // only once
+    }
+    CHECK_EQ(contents(dir.file("a.ppm")).size(), 11U + 12U);
+    CHECK_EQ(dir.entries(), 1U);
+    rt::PendingFile unwritable(dir.file("missing/a.ppm").c_str());
+    CHECK(unwritable.error().find("cannot be created") != std::string::npos);
+    CHECK(!rt::save_imageP6(unwritable, 2, 2, kPixels).empty());
+    CHECK_EQ(dir.entries(), 1U);
+}
+
 TEST(read_ppm_reads_what_save_wrote) {
     ScratchFolder dir;
     CHECK_EQ(rt::save_imageP6(2, 2, dir.file("a.ppm").c_str(), kPixels), std::string());
