@@ -23,6 +23,25 @@ struct Span {
     int first, last;
 };
 
+// Eye-ray hits on one ellipsoid waiting to be shaded together.
+template <typename Real>
+struct Packet {
+    int count = 0;
+    Real dx[kPacket], dy[kPacket], dz[kPacket], t[kPacket];
+    bool inside[kPacket];
+    std::uint8_t* out[kPacket];
+
+    void add(Real x, Real y, Real z, Real root, bool in, std::uint8_t* pixel) {
+        dx[count] = x, dy[count] = y, dz[count] = z, t[count] = root, inside[count] = in, out[count] = pixel;
+        ++count;
+    }
+    void shade(const Tracer<Real>& tracer, std::uint32_t ellipsoid, TraceScratch<Real>& scratch) {
+        if (count == 0) return;
+        tracer.eye_hit_pixels(ellipsoid, count, dx, dy, dz, t, inside, scratch, out);
+        count = 0;
+    }
+};
+
 // One thread's working memory, so that no row or pixel allocates.
 template <typename Real>
 struct Workspace {
@@ -30,9 +49,10 @@ struct Workspace {
     std::vector<Span> in_row;             // the row's ellipsoids
     std::vector<std::uint32_t> in_pixel;  // the pixel's ellipsoids (plain path)
     EyeRowHits<Real> hits;                // each column's nearest hit (eye_rays.h)
+    std::vector<Packet<Real>> packets;    // per ellipsoid
 
     Workspace(const Tracer<Real>& tracer, std::size_t ellipsoids, int columns)
-        : scratch(tracer.make_scratch()), in_pixel(ellipsoids), hits(columns) {
+        : scratch(tracer.make_scratch()), in_pixel(ellipsoids), hits(columns), packets(ellipsoids) {
         in_row.reserve(ellipsoids);
     }
 };
@@ -134,12 +154,19 @@ Image render(const Scene& scene, unsigned threads, bool accelerate) {
             EyeRays<Real>::clear(hits, lo, hi);
             for (const Span& span : in_row)
                 eye_rays.intersect(hits, span.ellipsoid, span.first, span.last, column_x.data(), y, near_z);
+            // The hit pixels, shaded in packets of pixels that see the same ellipsoid
+            // (Tracer::eye_hit_pixels(), vector lanes), in column order per ellipsoid.
             for (int c = lo; c <= hi; ++c) {
                 const auto column = static_cast<std::size_t>(c);
-                if (hits.ellipsoid[column] == EyeRowHits<Real>::kNone) continue;  // the background
-                tracer.eye_hit_pixel(hits.ellipsoid[column], hits.t[column], hits.inside[column] != 0,
-                                     {column_x[column], y, near_z}, scratch, row_out + column * 3);
+                const std::uint32_t i = hits.ellipsoid[column];
+                if (i == EyeRowHits<Real>::kNone) continue;  // the background
+                Packet<Real>& packet = work.packets[i];
+                packet.add(column_x[column], y, near_z, hits.t[column], hits.inside[column] != 0,
+                           row_out + column * 3);
+                if (packet.count == kPacket) packet.shade(tracer, i, scratch);
             }
+            for (const Span& span : in_row)
+                work.packets[span.ellipsoid].shade(tracer, span.ellipsoid, scratch);
         }
     };
 
