@@ -2,12 +2,13 @@
 // instructions (eye_packet.h); each pixel's colour must equal, bit for bit, the one of
 // the one-pixel path (trace_eye_ray(), i.e. shade()), and its bytes those of
 // eye_hit_pixel(), in float, double and long double: for packets of neighbouring
-// pixels, of pixels scattered over a row, and of sizes 1, 3 and kPacket.
+// pixels, of pixels scattered over a row, and partial packets.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <iostream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "check.h"
@@ -95,14 +96,15 @@ long long differing_bytes(const rt::Scene& scene, int packet, int stride) {
 template <typename Real>
 bool packets_match(const std::string& name, const rt::Scene& scene) {
     bool all = true;
-    for (const int packet : {1, 3, rt::kPacket})
-        for (const int stride : {1, 3}) {
-            const long long d = differing_bytes<Real>(scene, packet, stride);
-            if (d != 0)
-                std::cerr << name << " (" << sizeof(Real) << "-byte reals, packets of " << packet
-                          << ", stride " << stride << "): " << d << " bytes differ\n";
-            all = all && d == 0;
-        }
+    // Full packets of neighbours, full packets of scattered pixels, partial packets.
+    const std::pair<int, int> shapes[] = {{rt::kPacket, 1}, {rt::kPacket, 3}, {3, 1}};
+    for (const auto& [packet, stride] : shapes) {
+        const long long d = differing_bytes<Real>(scene, packet, stride);
+        if (d != 0)
+            std::cerr << name << " (" << sizeof(Real) << "-byte reals, packets of " << packet << ", stride "
+                      << stride << "): " << d << " bytes differ\n";
+        all = all && d == 0;
+    }
     return all;
 }
 
