@@ -46,9 +46,16 @@ public:
     // True when the shadow ray from point to light light_index certainly is not blocked
     // by ellipsoid i because it runs inside it.
     bool contains_segment(const Vec3<Real>& point, std::size_t light_index, std::size_t i) const {
-        return !light_inside_.empty() && light_inside_[light_index * n_ + i] &&
-               unit_radius2(Vec3<C>::from(point), i) <= C(1) + C(1e-10);
+        return light_within(light_index, i) && point_within(unit_radius2(Vec3<C>::from(point), i));
     }
+
+    // The same in two parts, for callers that have computed unit_radius2(point, i)
+    // themselves (ShadowPrefilter::decide_lanes()'s o2, the same operations):
+    // contains_segment() = light_within(light_index, i) && point_within(o2).
+    bool light_within(std::size_t light_index, std::size_t i) const {
+        return !light_inside_.empty() && light_inside_[light_index * n_ + i];
+    }
+    static bool point_within(C o2) { return o2 <= C(1) + C(1e-10); }
 
 private:
     // |(p - centre) / scale|^2: below 1 inside, 1 on the surface. A product by the

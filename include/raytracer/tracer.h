@@ -101,6 +101,11 @@ public:
             build_grids();
         enclosures_ = Enclosures<Real>(ellipsoids_, light_positions);
         prefilter_ = ShadowPrefilter<Real>(ellipsoids_);
+        // Packets test their shadow rays together (shadow_lanes()) where the light
+        // buffers' lists are bit sets and the prefilter works (not in float, whose
+        // cells hit_colours() does not look up).
+        packet_shadows_ = std::is_same_v<C, Real> && use_grids_ && prefilter_.enabled() &&
+                          ellipsoids_.size() <= DirectionGrid<C>::kMaxBitsEllipsoids;
     }
 
     // Working memory for one thread's rays.
@@ -432,7 +437,11 @@ private:
                         light_grids_[li].template cells<kPacket>(fx, fy, fz, cells);
                     }
                 }
-                for (int k = 0; k < count; ++k) {
+                bool tested = false;
+                if constexpr (std::is_same_v<C, Real>) {
+                    if (packet_shadows_) shadow_lanes(p, i, li, cells, scratch), tested = true;
+                }
+                for (int k = 0; k < count && !tested; ++k) {
                     if (p.front[k] == 0) continue;
                     const V point{p.px[k], p.py[k], p.pz[k]}, to_light{p.tx[k], p.ty[k], p.tz[k]};
                     const bool shadowed =
@@ -451,6 +460,70 @@ private:
         }
         if (reflects) reflections(p, e.kr, reflections_left, scratch);
         for (int k = 0; k < count; ++k) colours[k] = {p.r[k], p.g[k], p.b[k]};
+    }
+
+    // in_shadow() for the lanes of a packet with light li in front (p.front), whose
+    // cells in the light's buffer are cells[k]; p.lit[k] = 1 where not shadowed. Used
+    // where packet_shadows_ holds.
+    //
+    // WHY: in_shadow() tries the ellipsoids of the lane's cell one lane at a time, each
+    // with decide()'s branches. Here each candidate ellipsoid is tried on all lanes at
+    // once with decide_lanes() (vector instructions), and intersect() runs only for the
+    // rare lanes it is unsure about. A lane is shadowed when SOME ellipsoid blocks its
+    // segment, and each test gives intersect()'s exact answer, so the order of the tries
+    // does not matter; a lane is only tried against the ellipsoids in_shadow() could
+    // try (its cell's list, less the self ellipsoid where self_clear and those that
+    // enclose light and point), so each lane gets in_shadow()'s boolean: the same bytes.
+    void shadow_lanes(HitPacket<Real>& p, std::uint32_t self, std::size_t li, const std::int32_t* cells,
+                      TraceScratch<Real>& scratch) const {
+        const DirectionGrid<C>& grid = light_grids_[li];
+        constexpr int N = kPacket;
+        std::uint64_t listed[N] = {};  // per lane, its cell's list as bits
+        std::uint64_t candidates = 0;  // their union
+        unsigned waiting = 0;          // bit k: lane k has the light in front and is not yet shadowed
+        unsigned self_clear = 0;       // bit k: lane k cannot be blocked by itself
+        for (int k = 0; k < p.count; ++k) {
+            if (p.front[k] == 0) continue;
+            listed[k] = grid.cell_bits(cells[k]);
+            candidates |= listed[k];
+            waiting |= 1U << k;
+            self_clear |= unsigned(p.self_clear[k] != 0) << k;
+        }
+        const unsigned front = waiting;
+        // Ellipsoid j against the waiting lanes that list it; clears their bits when blocked.
+        auto try_ellipsoid = [&](std::uint32_t j) {
+            unsigned lanes = 0;
+            for (int k = 0; k < N; ++k) lanes |= unsigned((listed[k] >> j) & 1U) << k;
+            lanes &= waiting;
+            if (j == self) lanes &= ~self_clear;
+            if (lanes == 0) return;
+            const auto answer = prefilter_.template decide_lanes<N>(p.px, p.py, p.pz, p.tx, p.ty, p.tz, j);
+            const bool enclosing = enclosures_.light_within(li, j);
+            unsigned blocked = 0;
+            for (int k = 0; k < N; ++k) {
+                if (!((lanes >> k) & 1U)) continue;
+                if (enclosing && Enclosures<Real>::point_within(answer.o2[k])) continue;
+                bool shadowed = answer.blocked[k] != 0;
+                if (answer.unsure[k] != 0)
+                    shadowed =
+                        blocks(ellipsoids_[j], V{p.px[k], p.py[k], p.pz[k]}, V{p.tx[k], p.ty[k], p.tz[k]});
+                blocked |= unsigned(shadowed) << k;
+            }
+            if (blocked == 0) return;
+            waiting &= ~blocked;
+            scratch.last_occluder[li] = j;
+        };
+        // The last blocker of this light first (neighbouring pixels share their shadows),
+        // then the others in increasing order.
+        const std::uint32_t last = scratch.last_occluder[li];
+        if (last != TraceScratch<Real>::kNone && ((candidates >> last) & 1U)) {
+            try_ellipsoid(last);
+            candidates &= ~(std::uint64_t(1) << last);
+        }
+        for (std::uint32_t j = 0; candidates != 0 && waiting != 0; ++j, candidates >>= 1)
+            if (candidates & 1U) try_ellipsoid(j);
+        const unsigned lit = front & waiting;
+        for (int k = 0; k < N; ++k) p.lit[k] = ((lit >> k) & 1U) ? Real(1) : Real(0);
     }
 
     // reflection() for the rays of a packet; adds seen * kr to each lane's colour.
@@ -601,6 +674,7 @@ private:
     typename SphereBounds<Real>::OriginTerms eye_terms_;
     std::vector<MappedOrigin<Real>> eye_origin_;  // per ellipsoid, of the camera
     bool use_grids_ = false;
+    bool packet_shadows_ = false;  // see shadow_lanes()
     Enclosures<Real> enclosures_;
     ShadowPrefilter<Real> prefilter_;
     bool accelerate_ = true;
