@@ -73,7 +73,7 @@ public:
     // decide_lanes()'s answers, lane k in element k (masks are 1 or 0).
     template <int N>
     struct Lanes {
-        C blocked[N], unsure[N], o2[N];
+        C blocked[N], unsure[N];
     };
 
     // Whether decide() can answer at all (not in float).
@@ -81,8 +81,7 @@ public:
 
     // decide() for N rays at once against ellipsoid i (enabled() only), ray k from
     // (px, py, pz)[k] along (tx, ty, tz)[k]: blocked[k] = 1 where decide() answers
-    // kBlocked, unsure[k] = 1 where kUnsure (else 0), and o2[k] = |o'|^2 as decide()
-    // computes it (for Enclosures::point_within()).
+    // kBlocked, unsure[k] = 1 where kUnsure (else 0).
     // WHY a second copy: decide() branches after each test, so a loop over rays calling it
     // stays scalar. Here every lane does decide()'s operations in decide()'s order and its
     // branches become products of 0/1 masks (doubles: bool temporaries and && keep GCC's
@@ -119,7 +118,6 @@ public:
             const C no = usable * (misses + crosses * near_out * far_out);
             out.blocked[k] = yes;
             out.unsure[k] = C(1) - yes - no;
-            out.o2[k] = o_o;
         }
         return out;
     }

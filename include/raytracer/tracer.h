@@ -478,37 +478,46 @@ private:
                       TraceScratch<Real>& scratch) const {
         const DirectionGrid<C>& grid = light_grids_[li];
         constexpr int N = kPacket;
-        std::uint64_t listed[N] = {};  // per lane, its cell's list as bits
-        std::uint64_t candidates = 0;  // their union
-        unsigned waiting = 0;          // bit k: lane k has the light in front and is not yet shadowed
-        unsigned self_clear = 0;       // bit k: lane k cannot be blocked by itself
-        for (int k = 0; k < p.count; ++k) {
-            if (p.front[k] == 0) continue;
-            listed[k] = grid.cell_bits(cells[k]);
-            candidates |= listed[k];
-            waiting |= 1U << k;
-            self_clear |= unsigned(p.self_clear[k] != 0) << k;
+        using Bits = std::uint64_t;  // bit k for lane k
+        // 64-bit like the lanes of doubles, and selects of these constants rather than
+        // shifts by k: GCC then vectorises the loops below.
+        static constexpr Bits kLane[N] = {1, 2, 4, 8, 16, 32, 64, 128};
+        // Which lanes have the light in front and which cannot be blocked by themselves;
+        // per lane, its cell's list as bits. Lanes from p.count on repeat the last ray:
+        // their lists add nothing, and they are never waiting.
+        Bits front = 0, self_clear = 0;
+        for (int k = 0; k < N; ++k) {
+            front |= p.front[k] != 0 ? kLane[k] : 0;
+            self_clear |= p.self_clear[k] != 0 ? kLane[k] : 0;
         }
-        const unsigned front = waiting;
+        front &= (Bits(1) << p.count) - 1;
+        Bits listed[N];
+        Bits candidates = 0;
+        for (int k = 0; k < N; ++k) {
+            listed[k] = (front & kLane[k]) != 0 ? grid.cell_bits(cells[k]) : 0;
+            candidates |= listed[k];
+        }
+        Bits waiting = front;  // lanes not yet known to be shadowed
         // Ellipsoid j against the waiting lanes that list it; clears their bits when blocked.
         auto try_ellipsoid = [&](std::uint32_t j) {
-            unsigned lanes = 0;
-            for (int k = 0; k < N; ++k) lanes |= unsigned((listed[k] >> j) & 1U) << k;
+            Bits lanes = 0;
+            for (int k = 0; k < N; ++k) lanes |= ((listed[k] >> j) & 1U) != 0 ? kLane[k] : 0;
             lanes &= waiting;
             if (j == self) lanes &= ~self_clear;
             if (lanes == 0) return;
+            lanes &= ~enclosures_.template contains_segments<N>(p.px, p.py, p.pz, li, j, kLane);
+            if (lanes == 0) return;
             const auto answer = prefilter_.template decide_lanes<N>(p.px, p.py, p.pz, p.tx, p.ty, p.tz, j);
-            const bool enclosing = enclosures_.light_within(li, j);
-            unsigned blocked = 0;
+            Bits blocked = 0, unsure = 0;
             for (int k = 0; k < N; ++k) {
-                if (!((lanes >> k) & 1U)) continue;
-                if (enclosing && Enclosures<Real>::point_within(answer.o2[k])) continue;
-                bool shadowed = answer.blocked[k] != 0;
-                if (answer.unsure[k] != 0)
-                    shadowed =
-                        blocks(ellipsoids_[j], V{p.px[k], p.py[k], p.pz[k]}, V{p.tx[k], p.ty[k], p.tz[k]});
-                blocked |= unsigned(shadowed) << k;
+                blocked |= answer.blocked[k] != 0 ? kLane[k] : 0;
+                unsure |= answer.unsure[k] != 0 ? kLane[k] : 0;
             }
+            blocked &= lanes, unsure &= lanes;
+            for (int k = 0; unsure != 0; ++k, unsure >>= 1)  // rare: intersect() decides
+                if ((unsure & 1U) &&
+                    blocks(ellipsoids_[j], V{p.px[k], p.py[k], p.pz[k]}, V{p.tx[k], p.ty[k], p.tz[k]}))
+                    blocked |= kLane[k];
             if (blocked == 0) return;
             waiting &= ~blocked;
             scratch.last_occluder[li] = j;
@@ -518,12 +527,12 @@ private:
         const std::uint32_t last = scratch.last_occluder[li];
         if (last != TraceScratch<Real>::kNone && ((candidates >> last) & 1U)) {
             try_ellipsoid(last);
-            candidates &= ~(std::uint64_t(1) << last);
+            candidates &= ~(Bits(1) << last);
         }
         for (std::uint32_t j = 0; candidates != 0 && waiting != 0; ++j, candidates >>= 1)
             if (candidates & 1U) try_ellipsoid(j);
-        const unsigned lit = front & waiting;
-        for (int k = 0; k < N; ++k) p.lit[k] = ((lit >> k) & 1U) ? Real(1) : Real(0);
+        // Lit: the light in front and no blocker found.
+        for (int k = 0; k < N; ++k) p.lit[k] = (waiting & kLane[k]) != 0 ? Real(1) : Real(0);
     }
 
     // reflection() for the rays of a packet; adds seen * kr to each lane's colour.
