@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "raytracer/compiler.h"
 #include "raytracer/vec3.h"
 
 namespace rt {
@@ -165,6 +166,21 @@ struct HitPacket {
             const Real twice = 2 * (nx[k] * dx[k] + ny[k] * dy[k] + nz[k] * dz[k]);
             x[k] = dx[k] - nx[k] * twice, y[k] = dy[k] - ny[k] * twice, z[k] = dz[k] - nz[k] * twice;
         }
+    }
+
+    // Lane masks as bit sets, bit k for lane k (64-bit like the lanes of doubles, and
+    // selects of constant bits rather than shifts by k, so that GCC vectorises these).
+    static constexpr std::uint64_t kLaneBit[N] = {1, 2, 4, 8, 16, 32, 64, 128};
+    static std::uint64_t bits(const Real* mask) {
+        std::uint64_t set = 0;
+        RT_VECTOR_LOOP
+        for (int k = 0; k < N; ++k) set |= mask[k] != 0 ? kLaneBit[k] : 0;
+        return set;
+    }
+    // lit = 1 in the lanes of the set, else 0.
+    void light_lanes(std::uint64_t set) {
+        RT_VECTOR_LOOP
+        for (int k = 0; k < N; ++k) lit[k] = (set & kLaneBit[k]) != 0 ? Real(1) : Real(0);
     }
 
     // shade(): colour += seen * kr, for lane k.

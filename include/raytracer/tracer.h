@@ -485,12 +485,8 @@ private:
         // Which lanes have the light in front and which cannot be blocked by themselves;
         // per lane, its cell's list as bits. Lanes from p.count on repeat the last ray:
         // their lists add nothing, and they are never waiting.
-        Bits front = 0, self_clear = 0;
-        for (int k = 0; k < N; ++k) {
-            front |= p.front[k] != 0 ? kLane[k] : 0;
-            self_clear |= p.self_clear[k] != 0 ? kLane[k] : 0;
-        }
-        front &= (Bits(1) << p.count) - 1;
+        const Bits front = HitPacket<Real>::bits(p.front) & ((Bits(1) << p.count) - 1);
+        const Bits self_clear = HitPacket<Real>::bits(p.self_clear);
         Bits listed[N];
         Bits candidates = 0;
         for (int k = 0; k < N; ++k) {
@@ -501,6 +497,7 @@ private:
         // Ellipsoid j against the waiting lanes that list it; clears their bits when blocked.
         auto try_ellipsoid = [&](std::uint32_t j) {
             Bits lanes = 0;
+            RT_VECTOR_LOOP
             for (int k = 0; k < N; ++k) lanes |= ((listed[k] >> j) & 1U) != 0 ? kLane[k] : 0;
             lanes &= waiting;
             if (j == self) lanes &= ~self_clear;
@@ -509,6 +506,7 @@ private:
             if (lanes == 0) return;
             const auto answer = prefilter_.template decide_lanes<N>(p.px, p.py, p.pz, p.tx, p.ty, p.tz, j);
             Bits blocked = 0, unsure = 0;
+            RT_VECTOR_LOOP
             for (int k = 0; k < N; ++k) {
                 blocked |= answer.blocked[k] != 0 ? kLane[k] : 0;
                 unsure |= answer.unsure[k] != 0 ? kLane[k] : 0;
@@ -532,7 +530,7 @@ private:
         for (std::uint32_t j = 0; candidates != 0 && waiting != 0; ++j, candidates >>= 1)
             if (candidates & 1U) try_ellipsoid(j);
         // Lit: the light in front and no blocker found.
-        for (int k = 0; k < N; ++k) p.lit[k] = (waiting & kLane[k]) != 0 ? Real(1) : Real(0);
+        p.light_lanes(waiting);
     }
 
     // reflection() for the rays of a packet; adds seen * kr to each lane's colour.
