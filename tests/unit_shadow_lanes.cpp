@@ -134,10 +134,10 @@ TEST(lane_decide_answers_as_the_scalar_decide) {
 TEST(lane_enclosures_answer_as_the_scalar_test) {
     std::mt19937 g(7);
     const std::vector<rt::Ellipsoid<double>> ellipsoids = random_ellipsoids(g, 12);
-    std::vector<rt::Vec3<double>> lights;
-    for (int l = 0; l < 6; ++l) lights.push_back({uniform(g, -6, 6), uniform(g, -6, 6), uniform(g, -12, 2)});
+    std::vector<rt::Vec3<double>> lights(6);
+    for (rt::Vec3<double>& l : lights) l = {uniform(g, -6, 6), uniform(g, -6, 6), uniform(g, -12, 2)};
     const rt::Enclosures<double> enclosures(ellipsoids, lights);
-    static constexpr std::uint64_t kLane[N] = {1, 2, 4, 8, 16, 32, 64, 128};
+    const std::uint64_t* lane = rt::HitPacket<double>::kLaneBit;
     long long differing = 0, contained = 0;
     for (int round = 0; round < 20000; ++round) {
         const std::size_t i = g() % ellipsoids.size(), li = g() % lights.size();
@@ -146,9 +146,9 @@ TEST(lane_enclosures_answer_as_the_scalar_test) {
         for (int k = 0; k < N; ++k) {
             const rt::Vec3<double> p = random_ray(g, ellipsoids[i]).point;
             px[k] = p.x, py[k] = p.y, pz[k] = p.z;
-            if (enclosures.contains_segment(p, li, i)) expected |= kLane[k], ++contained;
+            if (enclosures.contains_segment(p, li, i)) expected |= lane[k], ++contained;
         }
-        differing += enclosures.contains_segments<N>(px, py, pz, li, i, kLane) != expected;
+        differing += enclosures.contains_segments<N>(px, py, pz, li, i, lane) != expected;
     }
     CHECK(differing == 0);
     CHECK(contained > 1000);

@@ -10,8 +10,9 @@
 // order (listed at each step), lanes do not mix, and vector instructions round as scalar
 // ones do (no fused multiply-adds: CMakeLists.txt), so each pixel gets the same bits.
 // Where shade() skips a term (light behind, in shadow, R.V <= 0), the lane keeps its
-// sum by a select; no zero is added. Shadow rays branch per pixel and stay scalar
-// (Tracer::hit_colours()), and so does the search for what each mirrored ray hits.
+// sum by a select; no zero is added. Shadow rays are Tracer::shadow_lanes()'s (or
+// scalar, Tracer::hit_colours()), and the search for what each mirrored ray hits stays
+// scalar.
 #pragma once
 
 #include <cmath>

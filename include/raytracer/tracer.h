@@ -402,8 +402,9 @@ private:
 
     // shade() for up to kPacket rays that hit ellipsoid i, ray k from (ox, oy, oz)[k]
     // along (dx, dy, dz)[k] at t[k] (hit_packet.h): the same operations lane by lane;
-    // shadow rays and the search for what a mirrored ray hits stay scalar, and the
-    // mirrored rays are shaded in packets again, grouped by the ellipsoid they hit.
+    // shadow rays are tested for all lanes at once where shadow_lanes() can, the search
+    // for what a mirrored ray hits stays scalar, and the mirrored rays are shaded in
+    // packets again, grouped by the ellipsoid they hit.
     void hit_colours(std::uint32_t i, int count, const Real* ox, const Real* oy, const Real* oz,
                      const Real* dx, const Real* dy, const Real* dz, const Real* t, const bool* inside,
                      int reflections_left, TraceScratch<Real>& scratch, V* colours) const {
@@ -479,9 +480,9 @@ private:
         const DirectionGrid<C>& grid = light_grids_[li];
         constexpr int N = kPacket;
         using Bits = std::uint64_t;  // bit k for lane k
-        // 64-bit like the lanes of doubles, and selects of these constants rather than
-        // shifts by k: GCC then vectorises the loops below.
-        static constexpr Bits kLane[N] = {1, 2, 4, 8, 16, 32, 64, 128};
+        // Selects of these constants rather than shifts by k: GCC then vectorises the
+        // loops below (see HitPacket::bits()).
+        constexpr const Bits(&kLane)[N] = HitPacket<Real>::kLaneBit;
         // Which lanes have the light in front and which cannot be blocked by themselves;
         // per lane, its cell's list as bits. Lanes from p.count on repeat the last ray:
         // their lists add nothing, and they are never waiting.
