@@ -10,3 +10,13 @@
 #else
 #define RT_ALWAYS_INLINE inline
 #endif
+
+// Placed before a short loop over the lanes of a packet that GCC should vectorise: GCC
+// otherwise unrolls such a loop completely before its vectoriser runs, and its
+// basic-block vectoriser does not take the unrolled reductions (measured: lane masks
+// packed into bits cost 50 scalar instructions instead of a few vector ones).
+#if defined(__GNUC__) && !defined(__clang__)
+#define RT_VECTOR_LOOP _Pragma("GCC unroll 1")
+#else
+#define RT_VECTOR_LOOP
+#endif

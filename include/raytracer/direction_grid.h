@@ -127,6 +127,12 @@ public:
                 offsets_.push_back(static_cast<std::uint32_t>(items_.size()));
             }
         }
+        // The same lists as bit sets, for up to 64 ellipsoids.
+        if (spheres.size() > kMaxBitsEllipsoids) return;
+        bits_.assign(cells, 0);
+        for (std::size_t cell = 0; cell < cells; ++cell)
+            for (std::uint32_t k = offsets_[cell]; k < offsets_[cell + 1]; ++k)
+                bits_[cell] |= std::uint64_t(1) << items_[k];
     }
 
     // The ellipsoids that a ray from X in direction (dx, dy, dz) may meet: [first, last).
@@ -160,6 +166,12 @@ public:
         return items_.data() + offsets_[static_cast<std::size_t>(cell)];
     }
 
+    // A cell's list as a bit set (bit i: ellipsoid i), where has_bits(): at most 64
+    // ellipsoids.
+    bool has_bits() const { return !bits_.empty(); }
+    std::uint64_t cell_bits(std::int32_t cell) const { return bits_[static_cast<std::size_t>(cell)]; }
+    static constexpr std::size_t kMaxBitsEllipsoids = 64;
+
     C x() const { return x_; }
     C y() const { return y_; }
     C z() const { return z_; }
@@ -189,6 +201,7 @@ private:
     C half_n_ = C(0.5);                   // n / 2, exact
     std::vector<std::uint32_t> offsets_;  // cell k lists items_[offsets_[k], offsets_[k + 1])
     std::vector<std::uint32_t> items_;
+    std::vector<std::uint64_t> bits_;  // per cell, when at most 64 ellipsoids
 };
 
 }  // namespace rt

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <type_traits>
 #include <vector>
@@ -46,9 +47,33 @@ public:
     // True when the shadow ray from point to light light_index certainly is not blocked
     // by ellipsoid i because it runs inside it.
     bool contains_segment(const Vec3<Real>& point, std::size_t light_index, std::size_t i) const {
-        return !light_inside_.empty() && light_inside_[light_index * n_ + i] &&
-               unit_radius2(Vec3<C>::from(point), i) <= C(1) + C(1e-10);
+        return light_within(light_index, i) && point_within(unit_radius2(Vec3<C>::from(point), i));
     }
+
+    // For N points at once, (px, py, pz)[k], the lanes k where contains_segment() holds
+    // for light light_index and ellipsoid i: bit k of the result is kLane[k]'s bit.
+    // The same operations per lane as contains_segment(), as a loop GCC vectorises.
+    template <int N>
+    std::uint64_t contains_segments(const C* px, const C* py, const C* pz, std::size_t light_index,
+                                    std::size_t i, const std::uint64_t* lane_bits) const {
+        if (!light_within(light_index, i)) return 0;
+        const Vec3<C> centre = centre_[i], inverse = inverse_scale_[i];
+        std::uint64_t within = 0;
+        for (int k = 0; k < N; ++k) {
+            const C x = (px[k] - centre.x) * inverse.x, y = (py[k] - centre.y) * inverse.y,
+                    z = (pz[k] - centre.z) * inverse.z;
+            within |= point_within(x * x + y * y + z * z) ? lane_bits[k] : 0;
+        }
+        return within;
+    }
+
+    // The same in two parts, for callers that have computed unit_radius2(point, i)
+    // themselves (ShadowPrefilter::decide_lanes()'s o2, the same operations):
+    // contains_segment() = light_within(light_index, i) && point_within(o2).
+    bool light_within(std::size_t light_index, std::size_t i) const {
+        return !light_inside_.empty() && light_inside_[light_index * n_ + i];
+    }
+    static bool point_within(C o2) { return o2 <= C(1) + C(1e-10); }
 
 private:
     // |(p - centre) / scale|^2: below 1 inside, 1 on the surface. A product by the

@@ -10,13 +10,15 @@
 // order (listed at each step), lanes do not mix, and vector instructions round as scalar
 // ones do (no fused multiply-adds: CMakeLists.txt), so each pixel gets the same bits.
 // Where shade() skips a term (light behind, in shadow, R.V <= 0), the lane keeps its
-// sum by a select; no zero is added. Shadow rays branch per pixel and stay scalar
-// (Tracer::hit_colours()), and so does the search for what each mirrored ray hits.
+// sum by a select; no zero is added. Shadow rays are Tracer::shadow_lanes()'s (or
+// scalar, Tracer::hit_colours()), and the search for what each mirrored ray hits stays
+// scalar.
 #pragma once
 
 #include <cmath>
 #include <cstdint>
 
+#include "raytracer/compiler.h"
 #include "raytracer/vec3.h"
 
 namespace rt {
@@ -165,6 +167,21 @@ struct HitPacket {
             const Real twice = 2 * (nx[k] * dx[k] + ny[k] * dy[k] + nz[k] * dz[k]);
             x[k] = dx[k] - nx[k] * twice, y[k] = dy[k] - ny[k] * twice, z[k] = dz[k] - nz[k] * twice;
         }
+    }
+
+    // Lane masks as bit sets, bit k for lane k (64-bit like the lanes of doubles, and
+    // selects of constant bits rather than shifts by k, so that GCC vectorises these).
+    static constexpr std::uint64_t kLaneBit[N] = {1, 2, 4, 8, 16, 32, 64, 128};
+    static std::uint64_t bits(const Real* mask) {
+        std::uint64_t set = 0;
+        RT_VECTOR_LOOP
+        for (int k = 0; k < N; ++k) set |= mask[k] != 0 ? kLaneBit[k] : 0;
+        return set;
+    }
+    // lit = 1 in the lanes of the set, else 0.
+    void light_lanes(std::uint64_t set) {
+        RT_VECTOR_LOOP
+        for (int k = 0; k < N; ++k) lit[k] = (set & kLaneBit[k]) != 0 ? Real(1) : Real(0);
     }
 
     // shade(): colour += seen * kr, for lane k.

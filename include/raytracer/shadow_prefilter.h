@@ -70,7 +70,61 @@ public:
         return kUnsure;
     }
 
+    // decide_lanes()'s answers, lane k in element k (masks are 1 or 0).
+    template <int N>
+    struct Lanes {
+        C blocked[N], unsure[N];
+    };
+
+    // Whether decide() can answer at all (not in float).
+    bool enabled() const { return !centre_.empty(); }
+
+    // decide() for N rays at once against ellipsoid i (enabled() only), ray k from
+    // (px, py, pz)[k] along (tx, ty, tz)[k]: blocked[k] = 1 where decide() answers
+    // kBlocked, unsure[k] = 1 where kUnsure (else 0).
+    // WHY a second copy: decide() branches after each test, so a loop over rays calling it
+    // stays scalar. Here every lane does decide()'s operations in decide()'s order and its
+    // branches become products of 0/1 masks (doubles: bool temporaries and && keep GCC's
+    // loops scalar), so the loop runs as vector instructions; a lane whose branch decide()
+    // would not reach computes values (even NaN from a negative sqrt) that no mask takes.
+    template <int N>
+    Lanes<N> decide_lanes(const C* px, const C* py, const C* pz, const C* tx, const C* ty, const C* tz,
+                          std::size_t i) const {
+        Lanes<N> out;
+        using std::sqrt;
+        const Vec3<C> centre = centre_[i], inverse = inverse_scale_[i];
+        const C lo = C(kShadowMinT), margin = C(1e-4);
+        for (int k = 0; k < N; ++k) {
+            const C ox = (px[k] - centre.x) * inverse.x, oy = (py[k] - centre.y) * inverse.y,
+                    oz = (pz[k] - centre.z) * inverse.z;
+            const C dx = tx[k] * inverse.x, dy = ty[k] * inverse.y, dz = tz[k] * inverse.z;
+            const C o_o = ox * ox + oy * oy + oz * oz, a = dx * dx + dy * dy + dz * dz;
+            const C usable = mask(o_o <= C(1e4)) * mask(a >= C(1e-4));
+            const C b = ox * dx + oy * dy + oz * dz;
+            const C disc = b * b - a * (o_o - C(1));
+            const C misses = mask(disc < C(-1e-6) * a), crosses = mask(disc > C(1e-3) * a);
+            const C root = sqrt(disc);
+            const C near = -b - root, far = -b + root;
+            const C in_lo = (lo + margin) * a, in_hi = (C(1) - margin) * a;
+            const C out_lo = (lo - margin) * a, out_hi = (C(1) + margin) * a;
+            const C near_in = mask(near > in_lo) * mask(near < in_hi);
+            const C far_in = mask(far > in_lo) * mask(far < in_hi);
+            const C near_out = mask(near < out_lo) + mask(near > out_hi);  // at most one holds
+            const C far_out = mask(far < out_lo) + mask(far > out_hi);
+            const C any_in = near_in + far_in - near_in * far_in;
+            const C yes = usable * crosses * any_in;
+            // misses and crosses exclude each other; a lane with a root clearly in is not
+            // clearly out.
+            const C no = usable * (misses + crosses * near_out * far_out);
+            out.blocked[k] = yes;
+            out.unsure[k] = C(1) - yes - no;
+        }
+        return out;
+    }
+
 private:
+    static C mask(bool b) { return b ? C(1) : C(0); }
+
     static constexpr double kShadowMinT = 0.001;  // as rt::kShadowRayMinT (tracer.h)
 
     std::vector<Vec3<C>> centre_, inverse_scale_;

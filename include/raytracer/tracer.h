@@ -101,6 +101,11 @@ public:
             build_grids();
         enclosures_ = Enclosures<Real>(ellipsoids_, light_positions);
         prefilter_ = ShadowPrefilter<Real>(ellipsoids_);
+        // Packets test their shadow rays together (shadow_lanes()) where the light
+        // buffers' lists are bit sets and the prefilter works (not in float, whose
+        // cells hit_colours() does not look up).
+        packet_shadows_ = std::is_same_v<C, Real> && use_grids_ && prefilter_.enabled() &&
+                          ellipsoids_.size() <= DirectionGrid<C>::kMaxBitsEllipsoids;
     }
 
     // Working memory for one thread's rays.
@@ -397,8 +402,9 @@ private:
 
     // shade() for up to kPacket rays that hit ellipsoid i, ray k from (ox, oy, oz)[k]
     // along (dx, dy, dz)[k] at t[k] (hit_packet.h): the same operations lane by lane;
-    // shadow rays and the search for what a mirrored ray hits stay scalar, and the
-    // mirrored rays are shaded in packets again, grouped by the ellipsoid they hit.
+    // shadow rays are tested for all lanes at once where shadow_lanes() can, the search
+    // for what a mirrored ray hits stays scalar, and the mirrored rays are shaded in
+    // packets again, grouped by the ellipsoid they hit.
     void hit_colours(std::uint32_t i, int count, const Real* ox, const Real* oy, const Real* oz,
                      const Real* dx, const Real* dy, const Real* dz, const Real* t, const bool* inside,
                      int reflections_left, TraceScratch<Real>& scratch, V* colours) const {
@@ -432,7 +438,11 @@ private:
                         light_grids_[li].template cells<kPacket>(fx, fy, fz, cells);
                     }
                 }
-                for (int k = 0; k < count; ++k) {
+                bool tested = false;
+                if constexpr (std::is_same_v<C, Real>) {
+                    if (packet_shadows_) shadow_lanes(p, i, li, cells, scratch), tested = true;
+                }
+                for (int k = 0; k < count && !tested; ++k) {
                     if (p.front[k] == 0) continue;
                     const V point{p.px[k], p.py[k], p.pz[k]}, to_light{p.tx[k], p.ty[k], p.tz[k]};
                     const bool shadowed =
@@ -451,6 +461,77 @@ private:
         }
         if (reflects) reflections(p, e.kr, reflections_left, scratch);
         for (int k = 0; k < count; ++k) colours[k] = {p.r[k], p.g[k], p.b[k]};
+    }
+
+    // in_shadow() for the lanes of a packet with light li in front (p.front), whose
+    // cells in the light's buffer are cells[k]; p.lit[k] = 1 where not shadowed. Used
+    // where packet_shadows_ holds.
+    //
+    // WHY: in_shadow() tries the ellipsoids of the lane's cell one lane at a time, each
+    // with decide()'s branches. Here each candidate ellipsoid is tried on all lanes at
+    // once with decide_lanes() (vector instructions), and intersect() runs only for the
+    // rare lanes it is unsure about. A lane is shadowed when SOME ellipsoid blocks its
+    // segment, and each test gives intersect()'s exact answer, so the order of the tries
+    // does not matter; a lane is only tried against the ellipsoids in_shadow() could
+    // try (its cell's list, less the self ellipsoid where self_clear and those that
+    // enclose light and point), so each lane gets in_shadow()'s boolean: the same bytes.
+    void shadow_lanes(HitPacket<Real>& p, std::uint32_t self, std::size_t li, const std::int32_t* cells,
+                      TraceScratch<Real>& scratch) const {
+        const DirectionGrid<C>& grid = light_grids_[li];
+        constexpr int N = kPacket;
+        using Bits = std::uint64_t;  // bit k for lane k
+        // Selects of these constants rather than shifts by k: GCC then vectorises the
+        // loops below (see HitPacket::bits()).
+        constexpr const Bits(&kLane)[N] = HitPacket<Real>::kLaneBit;
+        // Which lanes have the light in front and which cannot be blocked by themselves;
+        // per lane, its cell's list as bits. Lanes from p.count on repeat the last ray:
+        // their lists add nothing, and they are never waiting.
+        const Bits front = HitPacket<Real>::bits(p.front) & ((Bits(1) << p.count) - 1);
+        const Bits self_clear = HitPacket<Real>::bits(p.self_clear);
+        Bits listed[N];
+        Bits candidates = 0;
+        for (int k = 0; k < N; ++k) {
+            listed[k] = (front & kLane[k]) != 0 ? grid.cell_bits(cells[k]) : 0;
+            candidates |= listed[k];
+        }
+        Bits waiting = front;  // lanes not yet known to be shadowed
+        // Ellipsoid j against the waiting lanes that list it; clears their bits when blocked.
+        auto try_ellipsoid = [&](std::uint32_t j) {
+            Bits lanes = 0;
+            RT_VECTOR_LOOP
+            for (int k = 0; k < N; ++k) lanes |= ((listed[k] >> j) & 1U) != 0 ? kLane[k] : 0;
+            lanes &= waiting;
+            if (j == self) lanes &= ~self_clear;
+            if (lanes == 0) return;
+            lanes &= ~enclosures_.template contains_segments<N>(p.px, p.py, p.pz, li, j, kLane);
+            if (lanes == 0) return;
+            const auto answer = prefilter_.template decide_lanes<N>(p.px, p.py, p.pz, p.tx, p.ty, p.tz, j);
+            Bits blocked = 0, unsure = 0;
+            RT_VECTOR_LOOP
+            for (int k = 0; k < N; ++k) {
+                blocked |= answer.blocked[k] != 0 ? kLane[k] : 0;
+                unsure |= answer.unsure[k] != 0 ? kLane[k] : 0;
+            }
+            blocked &= lanes, unsure &= lanes;
+            for (int k = 0; unsure != 0; ++k, unsure >>= 1)  // rare: intersect() decides
+                if ((unsure & 1U) &&
+                    blocks(ellipsoids_[j], V{p.px[k], p.py[k], p.pz[k]}, V{p.tx[k], p.ty[k], p.tz[k]}))
+                    blocked |= kLane[k];
+            if (blocked == 0) return;
+            waiting &= ~blocked;
+            scratch.last_occluder[li] = j;
+        };
+        // The last blocker of this light first (neighbouring pixels share their shadows),
+        // then the others in increasing order.
+        const std::uint32_t last = scratch.last_occluder[li];
+        if (last != TraceScratch<Real>::kNone && ((candidates >> last) & 1U)) {
+            try_ellipsoid(last);
+            candidates &= ~(Bits(1) << last);
+        }
+        for (std::uint32_t j = 0; candidates != 0 && waiting != 0; ++j, candidates >>= 1)
+            if (candidates & 1U) try_ellipsoid(j);
+        // Lit: the light in front and no blocker found.
+        p.light_lanes(waiting);
     }
 
     // reflection() for the rays of a packet; adds seen * kr to each lane's colour.
@@ -601,6 +682,7 @@ private:
     typename SphereBounds<Real>::OriginTerms eye_terms_;
     std::vector<MappedOrigin<Real>> eye_origin_;  // per ellipsoid, of the camera
     bool use_grids_ = false;
+    bool packet_shadows_ = false;  // see shadow_lanes()
     Enclosures<Real> enclosures_;
     ShadowPrefilter<Real> prefilter_;
     bool accelerate_ = true;
