@@ -121,16 +121,6 @@ public:
     V trace_eye_ray(const V& direction, TraceScratch<Real>& scratch) const {
         return trace(V{}, eye_terms_, direction, Real(kEyeRayMinT), kMaxReflections, background_, scratch);
     }
-    // The same when only the ellipsoids [first, last) (increasing) can meet the ray, as
-    // the renderer knows from screen_rects().
-    V trace_eye_ray(const V& direction, const std::uint32_t* first, const std::uint32_t* last,
-                    TraceScratch<Real>& scratch) const {
-        const Hit hit = closest(first, last, Real(kEyeRayMinT), [&](std::uint32_t i) {
-            return intersect_mapped(ellipsoids_[i], eye_origin_[i], direction);
-        });
-        return hit.ellipsoid == nullptr ? background_ : shade(hit, V{}, direction, kMaxReflections, scratch);
-    }
-
     // Per ellipsoid, the pixels outside which no eye ray meets it (screen_bounds.h);
     // the whole screen for each when not accelerating.
     std::vector<PixelRect> screen_rects(const Scene& scene) const {
@@ -150,13 +140,6 @@ public:
         bool inside = false;  // the far root was taken: the ray sees the inner surface
     };
 
-    // The first hit of an eye ray among the ellipsoids [first, last) (increasing).
-    Hit eye_hit(const V& direction, const std::uint32_t* first, const std::uint32_t* last) const {
-        return closest(first, last, Real(kEyeRayMinT), [&](std::uint32_t i) {
-            return intersect_mapped(ellipsoids_[i], eye_origin_[i], direction);
-        });
-    }
-
     // The same, written as the pixel's three bytes (to_byte()). A surface that no light
     // and no reflection changes (Kd = Ks = 0, Kr = 0) shows its ambient term alone, so
     // its bytes are computed once per ellipsoid (the same to_byte() of the same colour).
@@ -165,17 +148,12 @@ public:
         const Hit hit = closest(first, last, Real(kEyeRayMinT), [&](std::uint32_t i) {
             return intersect_mapped(ellipsoids_[i], eye_origin_[i], direction);
         });
-        if (hit.ellipsoid != nullptr) {
-            const Surface& surface = surfaces_[static_cast<std::size_t>(hit.ellipsoid - ellipsoids_.data())];
-            if (!surface.flat) {
-                const V colour = shade(hit, V{}, direction, kMaxReflections, scratch);
-                out[0] = to_byte(colour.x), out[1] = to_byte(colour.y), out[2] = to_byte(colour.z);
-                return;
-            }
-            out[0] = surface.bytes[0], out[1] = surface.bytes[1], out[2] = surface.bytes[2];
+        if (hit.ellipsoid == nullptr) {
+            out[0] = background_bytes_[0], out[1] = background_bytes_[1], out[2] = background_bytes_[2];
             return;
         }
-        out[0] = background_bytes_[0], out[1] = background_bytes_[1], out[2] = background_bytes_[2];
+        const auto i = static_cast<std::uint32_t>(hit.ellipsoid - ellipsoids_.data());
+        eye_hit_pixel(i, hit.t, hit.inside, direction, scratch, out);
     }
 
     // The three bytes of a pixel whose eye ray (from the camera along direction) was found
@@ -198,7 +176,7 @@ public:
     //
     // WHY: neighbouring pixels mostly see the same ellipsoid, and all of shade()'s
     // arithmetic but the shadow rays is then the same chain of operations per pixel, run
-    // here with the pixels as the lanes of vector instructions (eye_packet.h). Every lane
+    // here with the pixels as the lanes of vector instructions (hit_packet.h). Every lane
     // does the operations of shade() in its order, and a term that shade() skips is not
     // added (a select, not an addition of zero), so the bytes are the same.
     static constexpr int kPacket = rt::kPacket;
@@ -229,8 +207,6 @@ public:
     // (mapped_origin()), for eye rays intersected by the caller.
     const Ellipsoid<Real>& ellipsoid(std::size_t i) const { return ellipsoids_[i]; }
     const MappedOrigin<Real>& eye_origin(std::size_t i) const { return eye_origin_[i]; }
-    // The bytes of the background.
-    const std::uint8_t* background_bytes() const { return background_bytes_; }
     // Whether an eye ray's root t counts as a hit beyond the near plane: closest()'s test
     // (a root within 8 scene ulps of t = 1 is on the plane, see there).
     static Real eye_min_t() { return Real(kEyeRayMinT) * (Real(1) + Real(8) * scene_epsilon<Real>()); }

@@ -1,5 +1,5 @@
 // Tracer::eye_hit_pixels() shades up to kPacket eye-ray hits at once with vector
-// instructions (eye_packet.h); each pixel's colour must equal, bit for bit, the one of
+// instructions (hit_packet.h); each pixel's colour must equal, bit for bit, the one of
 // the one-pixel path (trace_eye_ray(), i.e. shade()), and its bytes those of
 // eye_hit_pixel(), in float, double and long double: for packets of neighbouring
 // pixels, of pixels scattered over a row, and partial packets.
