@@ -3,18 +3,15 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
-#include <thread>
 #include <vector>
 
 #include "raytracer/eye_rays.h"
+#include "raytracer/helper_pool.h"
 #include "raytracer/tracer.h"
 
 namespace rt {
 
-unsigned default_thread_count() {
-    const unsigned cores = std::thread::hardware_concurrency();
-    return cores == 0 ? 1 : cores;
-}
+unsigned default_thread_count() { return available_cores(); }
 
 namespace {
 // An ellipsoid that some pixels of a row may see, and which columns.
@@ -58,8 +55,12 @@ struct Workspace {
 };
 
 // By default the other cores are called in only when the rest of the image would take
-// the calling thread longer than this alone (see render()).
-constexpr std::chrono::microseconds kWorthHelping{3000};
+// the calling thread longer than this alone (see render()). Calling a helper costs this
+// thread about 0.08 ms; where it starts on an idle core at once (helper_pool.h) it
+// draws rows about 0.1 ms later, where it waits for the scheduler to move it, 3 ms.
+std::chrono::microseconds worth_helping() {
+    return std::chrono::microseconds(HelperPool::starts_on_idle_core() ? 400 : 3000);
+}
 }  // namespace
 
 template <typename Real>
@@ -170,47 +171,50 @@ Image render(const Scene& scene, unsigned threads, bool accelerate) {
         }
     };
 
-    // Rows are handed out in small bands from a shared counter, so that a thread that
-    // draws cheap rows (background) takes more of them and none idles at the end.
-    const int band = 4;
-    const int bands = (scene.rows + band - 1) / band;
-    std::atomic<int> next_band{0};
-    // Renders bands until none is left; after_band(b) after each.
-    auto take_bands = [&](Workspace<Real>& work, auto after_band) {
-        for (int b = next_band++; b < bands; b = next_band++) {
-            render_rows(b * band, std::min(scene.rows, (b + 1) * band), work);
-            after_band(b);
+    // Rows are handed out one at a time from a shared counter, so that a thread that
+    // draws cheap rows (background) takes more of them, and at the end the calling
+    // thread waits for at most one row of a helper's.
+    std::atomic<int> next_row{0};
+    // Renders rows until none is left; after_row(r) after each.
+    auto take_rows = [&](Workspace<Real>& work, auto after_row) {
+        for (int r = next_row++; r < scene.rows; r = next_row++) {
+            render_rows(r, r + 1, work);
+            after_row(r);
         }
     };
     // Each helper's working memory is made here, so that a helper thread allocates
     // nothing (its first allocation would set up a malloc arena of its own).
     std::vector<Workspace<Real>> helper_work;
-    std::vector<std::thread> pool;
+    auto help = [&](unsigned h) { take_rows(helper_work[h], [](int) {}); };
+    using Help = decltype(help);
+    HelperPool::Job helpers;  // declared after all that help uses: closed first
     auto call_helpers = [&](unsigned count) {
-        helper_work.reserve(count);  // no reallocation: the helpers hold references
-        for (unsigned t = 1; t < count; ++t) {
-            Workspace<Real>& work = helper_work.emplace_back(tracer, rects.size(), scene.columns);
-            pool.emplace_back([&take_bands, &work] { take_bands(work, [](int) {}); });
-        }
+        const unsigned wanted = std::min<unsigned>(count, static_cast<unsigned>(scene.rows)) - 1;
+        helper_work.reserve(wanted);  // no reallocation: the helpers hold references
+        for (unsigned h = 0; h < wanted; ++h) helper_work.emplace_back(tracer, rects.size(), scene.columns);
+        helpers.start(
+            wanted, [](void* context, unsigned h) { (*static_cast<Help*>(context))(h); }, &help);
     };
     // By default (threads = 0) the calling thread starts alone and calls in the other
     // cores only when, at its pace so far, the rest of the image would take it longer
-    // than kWorthHelping: at 400x400 the course scenes are done sooner than a second
-    // thread pays on this shared machine (a helper that is descheduled holds up the
-    // end of the image; measured in docs/speed.md), and their core count (a file read
-    // on Linux) is never asked.
-    if (threads != 0) call_helpers(std::min<unsigned>(threads, static_cast<unsigned>(bands)));
+    // than worth_helping(): scenes with few lit pixels are done sooner than a second
+    // thread pays (measured in docs/speed.md), and their core count is never asked.
+    if (threads > 1) call_helpers(threads);
     Workspace<Real> work(tracer, rects.size(), scene.columns);
     const auto start = std::chrono::steady_clock::now();
-    take_bands(work, [&](int b) {
-        const int done = b + 1, left = bands - done;  // alone, this thread has done bands 0..b
-        if (threads == 0 && left > 0 &&
-            (std::chrono::steady_clock::now() - start) * left >= kWorthHelping * done) {
-            threads = std::min<unsigned>(default_thread_count(), static_cast<unsigned>(left + 1));
-            call_helpers(threads);
+    const auto worth = worth_helping();
+    take_rows(work, [&](int r) {
+        if (threads != 0) return;
+        // Alone, this thread has done rows 0..r. Not judged on its first few microseconds
+        // (cold caches): a scene done by then never asks.
+        const int done = r + 1, left = scene.rows - done;
+        const auto elapsed = std::chrono::steady_clock::now() - start;
+        if (left > 0 && elapsed * 8 >= worth && elapsed * left >= worth * done) {
+            threads = default_thread_count();
+            if (threads > 1) call_helpers(std::min<unsigned>(threads, static_cast<unsigned>(left + 1)));
         }
     });
-    for (std::thread& t : pool) t.join();
+    helpers.finish();
     return image;
 }
 

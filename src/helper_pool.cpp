@@ -1,0 +1,156 @@
+#include "raytracer/helper_pool.h"
+
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <mutex>
+#include <system_error>
+#include <thread>
+
+// Linux with glibc: pthreads with an affinity attribute. Everything else, MinGW and
+// MSVC included: std::thread, started wherever the system puts it.
+#if defined(__linux__) && defined(__GLIBC__)
+#define RT_HELPERS_PINNED_START 1
+#include <pthread.h>
+#include <sched.h>
+#else
+#define RT_HELPERS_PINNED_START 0
+#endif
+
+namespace rt {
+namespace {
+
+struct Pool {
+    std::mutex job_mutex;  // held from start() to finish(): one job at a time
+    // The job: (id << 1) | open, one word so that a helper reads both at once. Ids
+    // start at 1; a helper remembers the last id it has seen.
+    std::atomic<std::uint64_t> state{0};
+    std::atomic<unsigned> inside{0};  // helpers inside body
+    // Written by start() before the job opens, read by helpers only while open and
+    // inside, and finish() waits for inside = 0 before another start(): never raced.
+    HelperPool::Body body = nullptr;
+    void* context = nullptr;
+    unsigned helpers = 0;
+    unsigned threads = 0;               // made so far (under job_mutex)
+    std::atomic<unsigned> numbered{0};  // each new helper takes the next number
+    std::mutex wake_mutex;
+    std::condition_variable wake;
+#if RT_HELPERS_PINNED_START
+    cpu_set_t process_cpus;
+    bool have_process_cpus = false;
+#endif
+};
+
+// Never destroyed: sleeping helpers wait on it until the process ends.
+Pool& pool() {
+    static Pool* const p = new Pool;
+    return *p;
+}
+
+void serve(unsigned index) {
+    Pool& p = pool();
+    std::uint64_t seen = 0;  // the id of the last job this helper has seen
+    for (;;) {
+        {
+            std::unique_lock<std::mutex> lock(p.wake_mutex);
+            p.wake.wait(lock, [&] { return (p.state.load() >> 1) != seen; });
+        }
+        // Entering before reading the state pairs with finish(), which closes before
+        // reading inside (both sequentially consistent): either finish() sees this
+        // helper inside and waits, or this helper sees the job closed.
+        p.inside.fetch_add(1);
+        const std::uint64_t state = p.state.load();
+        if ((state & 1U) != 0 && index < p.helpers) p.body(p.context, index);
+        seen = state >> 1;
+        p.inside.fetch_sub(1);
+    }
+}
+
+#if RT_HELPERS_PINNED_START
+void* serve_pinned(void* /*unused*/) {
+    Pool& p = pool();
+    // Made on another CPU than its creator's; from now on anywhere the process may run.
+    sched_setaffinity(0, sizeof p.process_cpus, &p.process_cpus);
+    serve(p.numbered++);
+    return nullptr;
+}
+
+bool make_helper(Pool& p) {
+    pthread_attr_t attr;
+    if (pthread_attr_init(&attr) != 0) return false;
+    if (p.have_process_cpus) {
+        cpu_set_t others = p.process_cpus;
+        const int here = sched_getcpu();
+        if (here >= 0 && here < CPU_SETSIZE) CPU_CLR(here, &others);
+        // With no other CPU left the thread shares this one, as it would anyway.
+        if (CPU_COUNT(&others) > 0) pthread_attr_setaffinity_np(&attr, sizeof others, &others);
+    }
+    pthread_t thread;
+    const bool made = pthread_create(&thread, &attr, &serve_pinned, nullptr) == 0;
+    pthread_attr_destroy(&attr);
+    if (made) pthread_detach(thread);
+    return made;
+}
+
+bool process_cpus(cpu_set_t& cpus) {
+    CPU_ZERO(&cpus);
+    // Fails (EINVAL) where the kernel's masks are wider than cpu_set_t (over 1024 CPUs).
+    return sched_getaffinity(0, sizeof cpus, &cpus) == 0 && CPU_COUNT(&cpus) > 0;
+}
+#else
+bool make_helper(Pool& p) {
+    try {
+        std::thread([&p] { serve(p.numbered++); }).detach();
+        return true;
+    } catch (const std::system_error&) {
+        return false;
+    }
+}
+#endif
+
+}  // namespace
+
+unsigned available_cores() {
+#if RT_HELPERS_PINNED_START
+    cpu_set_t cpus;
+    if (process_cpus(cpus)) return static_cast<unsigned>(CPU_COUNT(&cpus));
+#endif
+    const unsigned cores = std::thread::hardware_concurrency();
+    return cores == 0 ? 1 : cores;
+}
+
+unsigned HelperPool::Job::start(unsigned helpers, Body body, void* context) {
+    finish();
+    if (helpers == 0) return 0;
+    Pool& p = pool();
+    if (!p.job_mutex.try_lock()) return 0;  // another render has the helpers
+    started_ = true;
+#if RT_HELPERS_PINNED_START
+    if (p.threads == 0) p.have_process_cpus = process_cpus(p.process_cpus);
+#endif
+    p.body = body;
+    p.context = context;
+    p.helpers = helpers;
+    {
+        const std::lock_guard<std::mutex> lock(p.wake_mutex);
+        p.state.store((((p.state.load() >> 1) + 1) << 1) | 1U);
+    }
+    p.wake.notify_all();  // the helpers made before
+    // The helpers still missing see the open job as soon as they run.
+    while (p.threads < helpers && make_helper(p)) ++p.threads;
+    return p.threads < helpers ? p.threads : helpers;
+}
+
+void HelperPool::Job::finish() {
+    if (!started_) return;
+    Pool& p = pool();
+    p.state.store(p.state.load() & ~std::uint64_t(1));  // closed: no helper enters now
+    // The helpers inside are on their last band of rows.
+    while (p.inside.load() != 0) std::this_thread::yield();
+    started_ = false;
+    p.job_mutex.unlock();
+}
+
+bool HelperPool::starts_on_idle_core() { return RT_HELPERS_PINNED_START != 0; }
+
+}  // namespace rt

@@ -1,0 +1,96 @@
+// The helper pool's promises (helper_pool.h): every helper a job asks for may take
+// part; none is inside the job's body once finish() returns, and none enters it after;
+// one job at a time; the pool is reused by later jobs of any size.
+#include <atomic>
+#include <chrono>
+#include <thread>
+#include <vector>
+
+#include "check.h"
+#include "raytracer/helper_pool.h"
+
+namespace {
+
+// What a job's body records: each helper's calls, and whether any call came while the
+// test considered the job over.
+struct Record {
+    std::atomic<bool> over{false};
+    std::atomic<int> late_calls{0};
+    std::atomic<int> inside{0};
+    std::vector<std::atomic<int>> calls;
+    std::atomic<int> work{0};  // units of a shared counter, as rows are shared in render()
+    int units = 0;
+    explicit Record(unsigned helpers, int units_) : calls(helpers), units(units_) {}
+};
+
+void body(void* context, unsigned helper) {
+    Record& r = *static_cast<Record*>(context);
+    if (r.over.load()) ++r.late_calls;
+    ++r.inside;
+    ++r.calls[helper];
+    while (r.work++ < r.units) std::this_thread::yield();
+    --r.inside;
+}
+
+}  // namespace
+
+TEST(available_cores_is_at_least_one) { CHECK(rt::available_cores() >= 1); }
+
+TEST(helpers_take_part_and_are_out_when_finish_returns) {
+    for (unsigned helpers : {1U, 3U, 7U}) {
+        Record r(helpers, 200000);
+        rt::HelperPool::Job job;
+        const unsigned started = job.start(helpers, body, &r);
+        CHECK_EQ(started, helpers);
+        // The caller shares the work, as render() does.
+        while (r.work++ < r.units) std::this_thread::yield();
+        job.finish();
+        CHECK_EQ(r.inside.load(), 0);
+        r.over = true;
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        CHECK_EQ(r.late_calls.load(), 0);
+        for (unsigned h = 0; h < helpers; ++h) CHECK(r.calls[h].load() <= 1);
+    }
+}
+
+// Jobs closed at once, before most helpers wake: a helper that comes late must find the
+// job closed, and never enter a later job twice or with the wrong helper number.
+TEST(late_helpers_never_enter_a_finished_job) {
+    for (int round = 0; round < 2000; ++round) {
+        const unsigned helpers = 1 + static_cast<unsigned>(round % 4);
+        Record r(helpers, round % 3 == 0 ? 1000 : 0);
+        {
+            rt::HelperPool::Job job;  // its destructor finishes
+            job.start(helpers, body, &r);
+            while (r.work++ < r.units) {
+            }
+        }
+        CHECK_EQ(r.inside.load(), 0);
+        r.over = true;
+        // Time for the helpers woken for this job to come, before the next one opens.
+        const auto until =
+            std::chrono::steady_clock::now() + std::chrono::microseconds(round % 2 == 0 ? 30 : 0);
+        while (std::chrono::steady_clock::now() < until) std::this_thread::yield();
+        for (unsigned h = 0; h < helpers; ++h) CHECK(r.calls[h].load() <= 1);
+        CHECK_EQ(r.late_calls.load(), 0);
+    }
+}
+
+TEST(one_job_at_a_time) {
+    Record first(1, 0), second(1, 0);
+    rt::HelperPool::Job a;
+    CHECK_EQ(a.start(1, body, &first), 1U);
+    std::atomic<unsigned> got{99};
+    // From another thread, as a second render would be: no helpers while a runs.
+    std::thread other([&] {
+        rt::HelperPool::Job b;
+        got = b.start(1, body, &second);
+    });
+    other.join();
+    CHECK_EQ(got.load(), 0U);
+    a.finish();
+    rt::HelperPool::Job c;
+    CHECK_EQ(c.start(1, body, &second), 1U);  // free again
+    c.finish();
+    CHECK_EQ(c.start(0, body, &second), 0U);  // nothing asked, nothing started
+}
