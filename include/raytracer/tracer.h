@@ -94,10 +94,16 @@ public:
         accelerate_ = accelerate;
         if (!accelerate) return;
         // Light buffers pay when there are more shadow rays than cells, and are not
-        // built where their tables would be huge (thousands of lights and ellipsoids).
+        // built where their tables would be huge (thousands of lights and ellipsoids),
+        // nor where no eye ray can hit anything (every ellipsoid off screen or behind
+        // the camera: no shadow ray at all; 0.04 ms of testBehind's 1.8 ms run).
         const double cells = 6.0 * kGridCells * kGridCells;
         const double pixels = double(scene.columns) * double(scene.rows);
-        if (pixels >= cells && cells * double(ellipsoids_.size()) * double(lights_.size()) <= 5e7)
+        const std::vector<PixelRect> rects = screen_rects(scene);
+        const bool any_seen = std::any_of(rects.begin(), rects.end(), [](const PixelRect& r) {
+            return r.first_column <= r.last_column && r.first_row <= r.last_row;
+        });
+        if (any_seen && pixels >= cells && cells * double(ellipsoids_.size()) * double(lights_.size()) <= 5e7)
             build_grids();
         enclosures_ = Enclosures<Real>(ellipsoids_, light_positions);
         prefilter_ = ShadowPrefilter<Real>(ellipsoids_);
