@@ -93,8 +93,10 @@ int main(int argc, char** argv) {
         rt::PendingFile output(scene.output.c_str());
         std::string error = output.error();
         if (error.empty()) {
-            const rt::Image image = rt::render<double>(scene, threads);
-            error = rt::save_imageP6(output, image.width, image.height, image.rgb.data());
+            // The rows are written while later rows render (render.h).
+            rt::P6Writer writer(output, scene.columns, scene.rows);
+            rt::render<double>(scene, threads, true, &writer);
+            error = writer.commit();
         }
         if (!error.empty()) {
             std::fprintf(stderr, "%s:%d: error: OUTPUT %s, expected a writable file path\n",

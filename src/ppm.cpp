@@ -161,14 +161,34 @@ std::string PendingFile::commit() {
     return error;
 }
 
+P6Writer::P6Writer(PendingFile& file, int width, int height)
+    : file_(file), expected_(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3) {
+    if (!file_.error().empty()) return;
+    const std::string header = "P6\n" + std::to_string(width) + ' ' + std::to_string(height) + "\n255\n";
+    file_.expect_size(header.size() + expected_);
+    file_.write(header.data(), header.size());
+}
+
+void P6Writer::rows(const std::uint8_t* bytes, std::size_t size) {
+    if (!file_.error().empty()) return;
+    file_.write(bytes, size);
+    written_ += size;
+}
+
+std::string P6Writer::commit() {
+    if (!file_.error().empty()) return file_.error();
+    if (written_ != expected_) {  // not committed: the file's destructor removes it
+        return "the image's rows came incomplete (" + std::to_string(written_) + " of " +
+               std::to_string(expected_) + " bytes)";
+    }
+    return file_.commit();
+}
+
 std::string save_imageP6(PendingFile& file, int width, int height, const unsigned char* pixels) {
     if (!file.error().empty()) return file.error();
-    const std::string header = "P6\n" + std::to_string(width) + ' ' + std::to_string(height) + "\n255\n";
-    const std::size_t size = static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3;
-    file.expect_size(header.size() + size);
-    file.write(header.data(), header.size());
-    file.write(pixels, size);
-    return file.commit();
+    P6Writer writer(file, width, height);
+    writer.rows(pixels, static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3);
+    return writer.commit();
 }
 
 std::string save_imageP6(int width, int height, const char* file_name, const unsigned char* pixels) {

@@ -151,3 +151,28 @@ TEST(compare_counts_pixels_and_the_largest_difference) {
     CHECK_EQ(d.largest_difference, 3);
     CHECK(!rt::compare_images(a, rt::Image{1, 2, {10, 20, 30, 40, 50, 60}}).same_size);
 }
+
+// P6Writer: the header at once, rows as they come; an image whose rows did not all come
+// is not committed, and no file is left.
+TEST(p6_writer_writes_rows_as_they_come) {
+    ScratchFolder dir;
+    {
+        rt::PendingFile file(dir.file("a.ppm").c_str());
+        rt::P6Writer writer(file, 2, 2);
+        writer.rows(kPixels, 6);
+        writer.rows(kPixels + 6, 6);
+        CHECK_EQ(writer.commit(), std::string());
+    }
+    rt::Image image;
+    std::string error;
+    CHECK(rt::read_ppm(dir.file("a.ppm"), image, error));
+    CHECK(image.rgb.size() == 12 && std::equal(image.rgb.begin(), image.rgb.end(), kPixels));
+    {
+        rt::PendingFile file(dir.file("b.ppm").c_str());
+        rt::P6Writer writer(file, 2, 2);
+        writer.rows(kPixels, 6);
+        CHECK(!writer.commit().empty());
+    }
+    CHECK(!fs::exists(dir.file("b.ppm")));
+    CHECK_EQ(dir.entries(), std::size_t{1});  // a.ppm only: no temporary left
+}

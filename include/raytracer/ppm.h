@@ -11,6 +11,7 @@
 #include <string>
 
 #include "raytracer/image.h"
+#include "raytracer/row_sink.h"
 
 namespace rt {
 
@@ -45,6 +46,20 @@ private:
     std::FILE* file_ = nullptr;  // the temporary, while ours
     bool write_failed_ = false;
     std::string error_;
+};
+
+// A P6 image written into a pending file as its rows come (a RowSink for render()): the
+// header at once, the rows as they come, then commit() checks that all came and
+// commits the file (same return convention as PendingFile::commit()).
+class P6Writer final : public RowSink {
+public:
+    P6Writer(PendingFile& file, int width, int height);
+    void rows(const std::uint8_t* bytes, std::size_t size) override;
+    std::string commit();
+
+private:
+    PendingFile& file_;
+    std::size_t expected_ = 0, written_ = 0;  // pixel bytes
 };
 
 // Writes a P6 image into a pending file (its error() must be empty) and commits it.

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "raytracer/image.h"
+#include "raytracer/row_sink.h"
 #include "raytracer/scene.h"
 
 namespace rt {
@@ -12,8 +13,11 @@ unsigned default_thread_count();
 
 // Instantiated for float, double and long double (src/render.cpp). threads = 0 means
 // default_thread_count(); the image is byte-identical for any number of threads.
-// accelerate = false renders without any shortcut (see Tracer), for tests.
+// accelerate = false renders without any shortcut (see Tracer), for tests. A sink, when
+// given, receives every row of the image, in order, before render() returns: most of
+// them while later rows are still being rendered (so that writing a file overlaps the
+// render).
 template <typename Real>
-Image render(const Scene& scene, unsigned threads = 0, bool accelerate = true);
+Image render(const Scene& scene, unsigned threads = 0, bool accelerate = true, RowSink* sink = nullptr);
 
 }  // namespace rt

@@ -1,0 +1,23 @@
+// Where render() can hand an image's bytes while it is still rendering them.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+namespace rt {
+
+// Receives an image's bytes in order, whole rows at a time, exactly once each: the
+// concatenation of all calls is the image's rgb. Called from any of the render's
+// threads, one call at a time; must not throw.
+class RowSink {
+public:
+    virtual void rows(const std::uint8_t* bytes, std::size_t size) = 0;
+
+protected:
+    RowSink() = default;
+    RowSink(const RowSink&) = default;
+    RowSink& operator=(const RowSink&) = default;
+    ~RowSink() = default;
+};
+
+}  // namespace rt
