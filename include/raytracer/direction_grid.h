@@ -12,6 +12,7 @@
 #pragma once
 
 #include <algorithm>
+#include <bitset>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -32,31 +33,44 @@ class DirectionGrid {
 public:
     DirectionGrid() = default;
 
-    // The cone that contains a cell, in its face's own coordinates (w along the face's
-    // axis, outward; u and v as in list()): the same for the cell at (row, col) of
-    // each of the six faces, so computed once for all faces and all lights.
-    struct CellCone {
-        C w, u, v;       // the unit direction through the cell's centre
-        C cos_a, sin_a;  // of the largest angle from it to a corner of the cell
+    // The cones that contain the cells, in a face's own coordinates (w along the face's
+    // axis, outward; u and v as in list()), as arrays over the cells (row-major): the
+    // same for the cell at (row, col) of each of the six faces, so computed once for all
+    // faces and all lights. Per cell: the unit direction (w, u, v) through its centre,
+    // and the cosine and sine of the largest angle from it to a corner of the cell.
+    struct CellCones {
+        std::vector<C> w, u, v, cos_a, sin_a;
     };
-    static std::vector<CellCone> cell_cones(int n) {
+    static CellCones cell_cones(int n) {
         using std::sqrt;
-        std::vector<CellCone> cones;
-        cones.reserve(static_cast<std::size_t>(n) * static_cast<std::size_t>(n));
+        // The unit direction through each corner of the n x n cells, once per corner
+        // (neighbouring cells share them): the same operations as per cell, so the same
+        // values.
+        const auto side = static_cast<std::size_t>(n) + 1;
+        std::vector<C> corner_w(side * side), corner_u(side * side), corner_v(side * side);
+        for (int row = 0; row <= n; ++row)
+            for (int col = 0; col <= n; ++col) {
+                const std::size_t at = static_cast<std::size_t>(row) * side + static_cast<std::size_t>(col);
+                unit_direction(C(col) * 2 / C(n) - 1, C(row) * 2 / C(n) - 1, corner_w[at], corner_u[at],
+                               corner_v[at]);
+            }
+        CellCones cones;
+        const std::size_t cells = static_cast<std::size_t>(n) * static_cast<std::size_t>(n);
+        for (std::vector<C>* a : {&cones.w, &cones.u, &cones.v, &cones.cos_a, &cones.sin_a}) a->resize(cells);
         for (int row = 0; row < n; ++row)
             for (int col = 0; col < n; ++col) {
-                CellCone k{};
-                unit_direction((C(col) + C(0.5)) * 2 / C(n) - 1, (C(row) + C(0.5)) * 2 / C(n) - 1, k.w, k.u,
-                               k.v);
-                k.cos_a = 1;
+                const std::size_t k = static_cast<std::size_t>(row) * static_cast<std::size_t>(n) +
+                                      static_cast<std::size_t>(col);
+                C w, u, v;
+                unit_direction((C(col) + C(0.5)) * 2 / C(n) - 1, (C(row) + C(0.5)) * 2 / C(n) - 1, w, u, v);
+                C cos_a = 1;
                 for (int corner = 0; corner < 4; ++corner) {
-                    C kw, ku, kv;
-                    unit_direction(C(col + (corner & 1)) * 2 / C(n) - 1,
-                                   C(row + (corner >> 1)) * 2 / C(n) - 1, kw, ku, kv);
-                    k.cos_a = std::min(k.cos_a, k.w * kw + k.u * ku + k.v * kv);
+                    const std::size_t at = static_cast<std::size_t>(row + (corner >> 1)) * side +
+                                           static_cast<std::size_t>(col + (corner & 1));
+                    cos_a = std::min(cos_a, w * corner_w[at] + u * corner_u[at] + v * corner_v[at]);
                 }
-                k.sin_a = sqrt(std::max(C(0), C(1) - k.cos_a * k.cos_a));
-                cones.push_back(k);
+                cones.w[k] = w, cones.u[k] = u, cones.v[k] = v, cones.cos_a[k] = cos_a;
+                cones.sin_a[k] = sqrt(std::max(C(0), C(1) - cos_a * cos_a));
             }
         return cones;
     }
@@ -67,12 +81,11 @@ public:
 
     // The same with the cones of cell_cones(n), shared by the grids of all lights.
     DirectionGrid(C px, C py, C pz, const std::vector<BoundingSphere<C>>& spheres, int n,
-                  const std::vector<CellCone>& cones)
+                  const CellCones& cones)
         : x_(px), y_(py), z_(pz), n_(n), half_n_(C(n) / 2) {
         using std::sqrt;
-        const std::size_t cells = 6 * static_cast<std::size_t>(n) * static_cast<std::size_t>(n);
-        offsets_.reserve(cells + 1);
-        offsets_.push_back(0);
+        const std::size_t face_cells = static_cast<std::size_t>(n) * static_cast<std::size_t>(n);
+        const std::size_t cells = 6 * face_cells;
         // Per sphere: its unit direction from X and the sine and cosine of its angular
         // radius; a sphere around X is seen in every direction.
         struct Seen {
@@ -91,48 +104,73 @@ public:
             v.sin_b = s.radius / dist;
             v.cos_b = sqrt(C(1) - v.sin_b * v.sin_b);
         }
-        // Per face, each sphere's direction in the face's coordinates (w, u, v), so that
-        // its angle to a cell's centre is a dot product with the cell's cone.
-        struct Local {
-            C w, u, v, sin_b, cos_b;
-            bool everywhere;
-        };
-        std::vector<Local> local(spheres.size());
+        // Each cell's list as a bit set (bit i: sphere i), sphere by sphere over all the
+        // cells of a face: vector instructions, each cell's test the same operations.
+        // Where there are more spheres than bits, cell by cell into the lists directly.
+        const bool as_bits = spheres.size() <= kMaxBitsEllipsoids;
+        if (as_bits) bits_.assign(cells, 0);
+        offsets_.reserve(cells + 1);
+        offsets_.push_back(0);
         for (int face = 0; face < 6; ++face) {
             const C sign = (face & 1) ? C(-1) : C(1);
-            for (std::size_t i = 0; i < spheres.size(); ++i) {
-                const Seen& v = seen[i];
-                Local& l = local[i];
-                l.everywhere = v.everywhere, l.sin_b = v.sin_b, l.cos_b = v.cos_b;
-                if (v.everywhere) continue;
+            // Sphere i's direction in the face's coordinates (w, u, v), so that its angle
+            // to a cell's centre is a dot product with the cell's cone.
+            auto local = [&](const Seen& v, C& w, C& u, C& t) {
                 if (face < 2) {
-                    l.w = sign * v.ux, l.u = v.uy, l.v = v.uz;
+                    w = sign * v.ux, u = v.uy, t = v.uz;
                 } else if (face < 4) {
-                    l.w = sign * v.uy, l.u = v.ux, l.v = v.uz;
+                    w = sign * v.uy, u = v.ux, t = v.uz;
                 } else {
-                    l.w = sign * v.uz, l.u = v.ux, l.v = v.uy;
+                    w = sign * v.uz, u = v.ux, t = v.uy;
                 }
-            }
-            for (const CellCone& k : cones) {
+            };
+            // Angle(centre, sphere) <= a + b, in cosines (a + b < pi, as a is at most 55
+            // degrees and b below 90): cos(theta) >= cos(a + b). The rounding of the face
+            // coordinates (an ulp) is far below the margin.
+            if (as_bits) {
+                std::uint64_t* const face_bits = bits_.data() + static_cast<std::size_t>(face) * face_cells;
                 for (std::size_t i = 0; i < spheres.size(); ++i) {
-                    const Local& l = local[i];
-                    // Angle(centre, sphere) <= a + b, in cosines (a + b < pi, as a is at
-                    // most 55 degrees and b below 90): cos(theta) >= cos(a + b). The
-                    // rounding of the face coordinates (an ulp) is far below the margin.
-                    const bool listed =
-                        l.everywhere || k.w * l.w + k.u * l.u + k.v * l.v >=
-                                            (k.cos_a * l.cos_b - k.sin_a * l.sin_b) - kAngleMargin;
-                    if (listed) items_.push_back(static_cast<std::uint32_t>(i));
+                    const Seen& v = seen[i];
+                    const std::uint64_t bit = std::uint64_t(1) << i;
+                    if (v.everywhere) {
+                        for (std::size_t k = 0; k < face_cells; ++k) face_bits[k] |= bit;
+                        continue;
+                    }
+                    C lw, lu, lv;
+                    local(v, lw, lu, lv);
+                    const C cos_b = v.cos_b, sin_b = v.sin_b;
+                    for (std::size_t k = 0; k < face_cells; ++k) {
+                        const bool listed = cones.w[k] * lw + cones.u[k] * lu + cones.v[k] * lv >=
+                                            (cones.cos_a[k] * cos_b - cones.sin_a[k] * sin_b) - kAngleMargin;
+                        face_bits[k] |= listed ? bit : 0;
+                    }
+                }
+                continue;
+            }
+            for (std::size_t k = 0; k < face_cells; ++k) {
+                for (const Seen& v : seen) {
+                    bool listed = v.everywhere;
+                    if (!listed) {
+                        C lw, lu, lv;
+                        local(v, lw, lu, lv);
+                        listed = cones.w[k] * lw + cones.u[k] * lu + cones.v[k] * lv >=
+                                 (cones.cos_a[k] * v.cos_b - cones.sin_a[k] * v.sin_b) - kAngleMargin;
+                    }
+                    if (listed) items_.push_back(static_cast<std::uint32_t>(&v - seen.data()));
                 }
                 offsets_.push_back(static_cast<std::uint32_t>(items_.size()));
             }
         }
-        // The same lists as bit sets, for up to 64 ellipsoids.
-        if (spheres.size() > kMaxBitsEllipsoids) return;
-        bits_.assign(cells, 0);
-        for (std::size_t cell = 0; cell < cells; ++cell)
-            for (std::uint32_t k = offsets_[cell]; k < offsets_[cell + 1]; ++k)
-                bits_[cell] |= std::uint64_t(1) << items_[k];
+        if (!as_bits) return;
+        // The lists from the bit sets, in increasing order, in one allocation.
+        std::size_t listed = 0;
+        for (const std::uint64_t b : bits_) listed += std::bitset<64>(b).count();
+        items_.reserve(listed);
+        for (std::uint64_t b : bits_) {
+            for (std::uint32_t i = 0; b != 0; ++i, b >>= 1)
+                if ((b & 1U) != 0) items_.push_back(i);
+            offsets_.push_back(static_cast<std::uint32_t>(items_.size()));
+        }
     }
 
     // The ellipsoids that a ray from X in direction (dx, dy, dz) may meet: [first, last).
