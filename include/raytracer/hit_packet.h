@@ -13,6 +13,11 @@
 // sum by a select; no zero is added. Shadow rays are Tracer::shadow_lanes()'s (or
 // scalar, Tracer::hit_colours()), and the search for what each mirrored ray hits stays
 // scalar.
+//
+// The loops with selects or a variable trip count around them (the sums, the whole
+// power, R.V) are marked RT_VECTOR_LOOP: GCC unrolled them completely first and then
+// left them as 8 scalar lanes with a branch each (measured: heavy 100x100 139.2 ->
+// 112.9 M instructions once vectorised).
 #pragma once
 
 #include <cmath>
@@ -127,6 +132,7 @@ struct HitPacket {
 
     // shade(): colour += (Ip Kd * n_dot_l) * O where lit.
     void add_diffuse(const Vec3<Real>& diffuse, const Vec3<Real>& colour) {
+        RT_VECTOR_LOOP
         for (int k = 0; k < N; ++k) {
             const Real dr = r[k] + (diffuse.x * n_dot_l[k]) * colour.x;
             const Real dg = g[k] + (diffuse.y * n_dot_l[k]) * colour.y;
@@ -142,10 +148,14 @@ struct HitPacket {
     void specular_whole(const Vec3<Real>& specular, std::int32_t exponent) {
         Real r_dot_v[N], result[N], base[N];
         reflect(r_dot_v);
+        RT_VECTOR_LOOP
         for (int k = 0; k < N; ++k) result[k] = 1, base[k] = r_dot_v[k];
         for (std::int32_t bits = exponent; bits != 0; bits >>= 1) {
-            if (bits & 1)
+            if (bits & 1) {
+                RT_VECTOR_LOOP
                 for (int k = 0; k < N; ++k) result[k] *= base[k];
+            }
+            RT_VECTOR_LOOP
             for (Real& x : base) x *= x;
         }
         add_specular(specular, r_dot_v, result);
@@ -191,6 +201,7 @@ private:
     static Real mask(bool b) { return b ? Real(1) : Real(0); }
 
     void reflect(Real* r_dot_v) const {
+        RT_VECTOR_LOOP
         for (int k = 0; k < N; ++k) {
             const Real twice = 2 * n_dot_l[k];
             const Real rx = nx[k] * twice - lx[k], ry = ny[k] * twice - ly[k], rz = nz[k] * twice - lz[k];
@@ -199,6 +210,7 @@ private:
     }
 
     void add_specular(const Vec3<Real>& specular, const Real* r_dot_v, const Real* power) {
+        RT_VECTOR_LOOP
         for (int k = 0; k < N; ++k) {
             const bool adds = lit[k] * mask(r_dot_v[k] > 0) != 0;  // no &&: it would branch
             const Real sr = r[k] + specular.x * power[k];
