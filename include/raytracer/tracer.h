@@ -16,6 +16,7 @@
 #include "raytracer/enclosures.h"
 #include "raytracer/hit_packet.h"
 #include "raytracer/image.h"
+#include "raytracer/intersect_lanes.h"
 #include "raytracer/power.h"
 #include "raytracer/scene.h"
 #include "raytracer/scene_precision.h"
@@ -46,6 +47,7 @@ struct TraceScratch {
     std::vector<std::uint32_t> candidates;
     std::vector<typename SphereBounds<Real>::C> cull;  // per ellipsoid: culled when not 0
     std::vector<std::uint32_t> last_occluder;          // per light; kNone when none yet
+    std::vector<std::uint32_t> lanes;                  // per ellipsoid: the rays that may hit it
     static constexpr std::uint32_t kNone = 0xFFFFFFFFU;
 };
 
@@ -114,6 +116,7 @@ public:
         s.candidates.resize(ellipsoids_.size());
         s.cull.resize(ellipsoids_.size());
         s.last_occluder.assign(lights_.size(), TraceScratch<Real>::kNone);
+        s.lanes.resize(ellipsoids_.size());
         return s;
     }
 
@@ -241,6 +244,54 @@ public:
         TraceScratch<Real> scratch = make_scratch();
         bounds_.prepare(origin, scratch.origin);
         return nearest_hit(origin, scratch.origin, direction, min_t, scratch);
+    }
+
+    // The nearest hits of kPacket rays with t > min_t, ray k from (ox, oy, oz)[k] along
+    // (dx, dy, dz)[k], as reflection() finds them (bounds_.candidates() from the ray's
+    // origin, then closest()): index[k] is the ellipsoid (kNone for none), t[k] its root,
+    // inside[k] whether the far root was taken.
+    //
+    // WHY: one culling pass over the bounding spheres for all rays
+    // (SphereBounds::candidate_lanes()), and each ellipsoid some ray may hit intersected
+    // for all lanes at once (intersect_lanes()), in vector instructions. Each lane gets
+    // the roots intersect() gives, for exactly the ellipsoids its own culling leaves,
+    // taken in increasing order by closest()'s rule: the same hit, t and flag.
+    void nearest_hits(const Real* ox, const Real* oy, const Real* oz, const Real* dx, const Real* dy,
+                      const Real* dz, Real min_t, TraceScratch<Real>& scratch, std::uint32_t* index, Real* t,
+                      bool* inside) const {
+        constexpr int N = kPacket;
+        std::uint32_t* lanes = scratch.lanes.data();
+        bounds_.template candidate_lanes<N>(ox, oy, oz, dx, dy, dz, lanes);
+        min_t *= Real(1) + Real(8) * scene_epsilon<Real>();  // as in closest()
+        Real best[N], found[N], far_root[N];
+        for (int k = 0; k < N; ++k)
+            best[k] = 0, found[k] = 0, far_root[k] = 0, index[k] = TraceScratch<Real>::kNone;
+        const std::size_t n = ellipsoids_.size();
+        for (std::size_t i = 0; i < n; ++i) {
+            const std::uint32_t set = lanes[i];
+            if (set == 0) continue;
+            Real hit[N], near[N], far[N], take[N], listed[N];
+            intersect_lanes<N>(ellipsoids_[i], ox, oy, oz, dx, dy, dz, hit, near, far);
+            RT_VECTOR_LOOP
+            for (int k = 0; k < N; ++k)
+                listed[k] = (set & HitPacket<Real>::kLaneBit[k]) != 0 ? Real(1) : Real(0);
+            // closest(): inside = !(near > min_t); t = inside ? far : near; taken when
+            // t > min_t and nothing nearer was found. (Products of 0/1 masks rather than
+            // && and bools, which keep GCC's loop scalar.)
+            RT_VECTOR_LOOP
+            for (int k = 0; k < N; ++k) {
+                const Real beyond = near[k] > min_t ? Real(1) : Real(0);
+                const Real root = beyond != 0 ? near[k] : far[k];
+                const Real nearer = found[k] == 0 ? Real(1) : (root < best[k] ? Real(1) : Real(0));
+                const Real taken = listed[k] * hit[k] * (root > min_t ? Real(1) : Real(0)) * nearer;
+                take[k] = taken;
+                best[k] = taken != 0 ? root : best[k];
+                far_root[k] = taken != 0 ? Real(1) - beyond : far_root[k];
+                found[k] = taken != 0 ? Real(1) : found[k];
+            }
+            for (int k = 0; k < N; ++k) index[k] = take[k] != 0 ? std::uint32_t(i) : index[k];
+        }
+        for (int k = 0; k < N; ++k) t[k] = best[k], inside[k] = far_root[k] != 0;
     }
 
     // A light is blocked when any ellipsoid lies on the segment from the point to it.
@@ -517,18 +568,10 @@ private:
         std::uint32_t next[kPacket];
         Real next_t[kPacket];
         bool next_inside[kPacket];
-        for (int k = 0; k < p.count; ++k) {
-            const V point{p.px[k], p.py[k], p.pz[k]}, mirrored{mx[k], my[k], mz[k]};
-            const std::uint32_t* first = scratch.candidates.data();
-            const std::uint32_t* last =
-                first + bounds_.candidates(point, mirrored, scratch.candidates.data(), scratch.cull.data());
-            const Hit hit = closest(first, last, point, mirrored, Real(kReflectedRayMinT));
-            // A reflected ray that hits nothing returns black, unlike an eye ray.
-            next[k] = hit.ellipsoid == nullptr
-                          ? TraceScratch<Real>::kNone
-                          : static_cast<std::uint32_t>(hit.ellipsoid - ellipsoids_.data());
-            next_t[k] = hit.t, next_inside[k] = hit.inside;
-        }
+        // What each mirrored ray hits (lanes from p.count on repeat the last ray). A
+        // reflected ray that hits nothing returns black, unlike an eye ray.
+        nearest_hits(p.px, p.py, p.pz, mx, my, mz, Real(kReflectedRayMinT), scratch, next, next_t,
+                     next_inside);
         V seen[kPacket] = {};
         bool done[kPacket] = {};
         for (int k = 0; k < p.count; ++k) {
