@@ -28,7 +28,16 @@
 
 namespace rt {
 
+// Two vector registers of doubles per operation: 16 lanes with AVX-512, else 8.
+// Measured (heavy 400x400, one thread, task-clock medians of 11 interleaved runs,
+// AVX-512): 8 lanes 167.5 ms, 16 lanes 149.1 ms, 32 lanes 200.3 ms; the per-light work
+// that does not depend on the lanes (the candidate loop, the tries' bookkeeping) is
+// shared by twice the rays, while packets stay nearly as full.
+#if defined(__AVX512F__)
+inline constexpr int kPacket = 16;
+#else
 inline constexpr int kPacket = 8;
+#endif
 
 template <typename Real>
 struct HitPacket {
@@ -181,7 +190,12 @@ struct HitPacket {
 
     // Lane masks as bit sets, bit k for lane k (64-bit like the lanes of doubles, and
     // selects of constant bits rather than shifts by k, so that GCC vectorises these).
+#if defined(__AVX512F__)
+    static constexpr std::uint64_t kLaneBit[N] = {1,   2,   4,    8,    16,   32,   64,    128,
+                                                  256, 512, 1024, 2048, 4096, 8192, 16384, 32768};
+#else
     static constexpr std::uint64_t kLaneBit[N] = {1, 2, 4, 8, 16, 32, 64, 128};
+#endif
     static std::uint64_t bits(const Real* mask) {
         std::uint64_t set = 0;
         RT_VECTOR_LOOP
