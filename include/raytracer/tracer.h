@@ -450,6 +450,15 @@ private:
             p.self_terms(e.scale);
             if (!surface.no_specular) p.viewer();
             const LightTerms* terms = light_terms_.data() + std::size_t(i) * lights_.size();
+            // The lanes whose points lie within the own ellipsoid for Enclosures, once for
+            // all lights (the mirror room's points are on it, so within it for every light
+            // it encloses).
+            std::uint64_t self_within = 0;
+            if constexpr (std::is_same_v<C, Real>) {
+                if (packet_shadows_ && enclosures_.encloses_a_light(i))
+                    self_within = enclosures_.template points_within<kPacket>(p.px, p.py, p.pz, i,
+                                                                              HitPacket<Real>::kLaneBit);
+            }
             for (std::size_t li = 0; li < lights_.size(); ++li) {
                 if (!p.light(lights_[li].position, kSelfSlack)) continue;  // behind every ray's point
                 // The lanes' cells in the light buffer at once: point - light = -(L - P)
@@ -467,7 +476,7 @@ private:
                 }
                 bool tested = false;
                 if constexpr (std::is_same_v<C, Real>) {
-                    if (packet_shadows_) shadow_lanes(p, i, li, cells, scratch), tested = true;
+                    if (packet_shadows_) shadow_lanes(p, i, li, cells, self_within, scratch), tested = true;
                 }
                 for (int k = 0; k < count && !tested; ++k) {
                     if (p.front[k] == 0) continue;
@@ -502,8 +511,9 @@ private:
     // does not matter; a lane is only tried against the ellipsoids in_shadow() could
     // try (its cell's list, less the self ellipsoid where self_clear and those that
     // enclose light and point), so each lane gets in_shadow()'s boolean: the same bytes.
+    // self_within: the lanes whose points Enclosures::points_within() ellipsoid self.
     void shadow_lanes(HitPacket<Real>& p, std::uint32_t self, std::size_t li, const std::int32_t* cells,
-                      TraceScratch<Real>& scratch) const {
+                      std::uint64_t self_within, TraceScratch<Real>& scratch) const {
         const DirectionGrid<C>& grid = light_grids_[li];
         constexpr int N = kPacket;
         using Bits = std::uint64_t;  // bit k for lane k
@@ -521,6 +531,10 @@ private:
             listed[k] = (front & kLane[k]) != 0 ? grid.cell_bits(cells[k]) : 0;
             candidates |= listed[k];
         }
+        // The own ellipsoid cannot block the lanes where self_clear holds, nor, where it
+        // encloses the light, those within it (contains_segments(), computed once).
+        const Bits self_free = self_clear | (enclosures_.light_within(li, self) ? self_within : 0);
+        if ((front & ~self_free) == 0) candidates &= ~(Bits(1) << self);
         Bits waiting = front;  // lanes not yet known to be shadowed
         // Ellipsoid j against the waiting lanes that list it; clears their bits when blocked.
         auto try_ellipsoid = [&](std::uint32_t j) {
@@ -528,9 +542,10 @@ private:
             RT_VECTOR_LOOP
             for (int k = 0; k < N; ++k) lanes |= ((listed[k] >> j) & 1U) != 0 ? kLane[k] : 0;
             lanes &= waiting;
-            if (j == self) lanes &= ~self_clear;
-            if (lanes == 0) return;
-            lanes &= ~enclosures_.template contains_segments<N>(p.px, p.py, p.pz, li, j, kLane);
+            if (j == self)
+                lanes &= ~self_free;
+            else if (lanes != 0)
+                lanes &= ~enclosures_.template contains_segments<N>(p.px, p.py, p.pz, li, j, kLane);
             if (lanes == 0) return;
             const auto answer = prefilter_.template decide_lanes<N>(p.px, p.py, p.pz, p.tx, p.ty, p.tz, j);
             Bits blocked = 0, unsure = 0;
