@@ -134,9 +134,9 @@ struct HitPacket {
                 self_test[k] * mask(scaled_length[k] * d * (cosine - self_slack) > Real(2000) * self_c[k]);
             lit[k] = 0;
         }
-        Real any = 0;
-        for (int k = 0; k < count; ++k) any += front[k];
-        return any != 0;
+        // Lanes from count on repeat the last ray, so all N lanes can be asked (a fixed
+        // vector loop instead of a scalar one over count).
+        return bits(front) != 0;
     }
 
     // shade(): colour += (Ip Kd * n_dot_l) * O where lit.
