@@ -475,8 +475,10 @@ private:
                     }
                 }
                 bool tested = false;
+                bool any_lit = true;
                 if constexpr (std::is_same_v<C, Real>) {
-                    if (packet_shadows_) shadow_lanes(p, i, li, cells, self_within, scratch), tested = true;
+                    if (packet_shadows_)
+                        any_lit = shadow_lanes(p, i, li, cells, self_within, scratch) != 0, tested = true;
                 }
                 for (int k = 0; k < count && !tested; ++k) {
                     if (p.front[k] == 0) continue;
@@ -486,6 +488,8 @@ private:
                                   p.self_clear[k] != 0 ? i : TraceScratch<Real>::kNone, cells[k]);
                     p.lit[k] = shadowed ? Real(0) : Real(1);
                 }
+                // No lane lit: the sums below would keep every lane's colour (selects).
+                if (!any_lit) continue;
                 p.add_diffuse(terms[li].diffuse, e.colour);
                 if (surface.no_specular) continue;
                 if (surface.exponent >= 0) {
@@ -512,8 +516,10 @@ private:
     // try (its cell's list, less the self ellipsoid where self_clear and those that
     // enclose light and point), so each lane gets in_shadow()'s boolean: the same bytes.
     // self_within: the lanes whose points Enclosures::points_within() ellipsoid self.
-    void shadow_lanes(HitPacket<Real>& p, std::uint32_t self, std::size_t li, const std::int32_t* cells,
-                      std::uint64_t self_within, TraceScratch<Real>& scratch) const {
+    // Returns the lit lanes as bits.
+    std::uint64_t shadow_lanes(HitPacket<Real>& p, std::uint32_t self, std::size_t li,
+                               const std::int32_t* cells, std::uint64_t self_within,
+                               TraceScratch<Real>& scratch) const {
         const DirectionGrid<C>& grid = light_grids_[li];
         constexpr int N = kPacket;
         using Bits = std::uint64_t;  // bit k for lane k
@@ -574,6 +580,7 @@ private:
             if (candidates & 1U) try_ellipsoid(j);
         // Lit: the light in front and no blocker found.
         p.light_lanes(waiting);
+        return waiting;
     }
 
     // reflection() for the rays of a packet; adds seen * kr to each lane's colour.
