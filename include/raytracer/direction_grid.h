@@ -98,7 +98,7 @@ public:
             bool everywhere;
         };
         std::vector<Local> local(spheres.size());
-        for (int face = 0; face < 6; ++face) {
+        auto locals = [&](int face) {
             const C sign = (face & 1) ? C(-1) : C(1);
             for (std::size_t i = 0; i < spheres.size(); ++i) {
                 const Seen& v = seen[i];
@@ -113,26 +113,61 @@ public:
                     l.w = sign * v.uz, l.u = v.ux, l.v = v.uy;
                 }
             }
-            for (const CellCone& k : cones) {
+        };
+        // Angle(centre, sphere) <= a + b, in cosines (a + b < pi, as a is at most 55
+        // degrees and b below 90): cos(theta) >= cos(a + b). The rounding of the face
+        // coordinates (an ulp) is far below the margin.
+        auto listed = [](const CellCone& k, const Local& l) {
+            return l.everywhere || k.w * l.w + k.u * l.u + k.v * l.v >=
+                                       (k.cos_a * l.cos_b - k.sin_a * l.sin_b) - kAngleMargin;
+        };
+        if (spheres.size() <= kMaxBitsEllipsoids) {
+            // The lists as bit sets first, sphere by sphere over all cells of a face (a loop
+            // over the cells that GCC vectorises; the same test per cell and sphere), then
+            // the lists from the sets, in increasing order as below.
+            // WHY: the grids of the course scenes (1 to 3 spheres) cost more to build than
+            // to use; per cell and sphere the loop below was branches and push_backs.
+            const std::size_t per_face = cones.size();
+            std::vector<C> cw(per_face), cu(per_face), cv(per_face), ccos(per_face), csin(per_face);
+            for (std::size_t c = 0; c < per_face; ++c)
+                cw[c] = cones[c].w, cu[c] = cones[c].u, cv[c] = cones[c].v, ccos[c] = cones[c].cos_a,
+                csin[c] = cones[c].sin_a;
+            bits_.assign(cells, 0);
+            for (int face = 0; face < 6; ++face) {
+                locals(face);
+                std::uint64_t* face_bits = bits_.data() + std::size_t(face) * per_face;
                 for (std::size_t i = 0; i < spheres.size(); ++i) {
-                    const Local& l = local[i];
-                    // Angle(centre, sphere) <= a + b, in cosines (a + b < pi, as a is at
-                    // most 55 degrees and b below 90): cos(theta) >= cos(a + b). The
-                    // rounding of the face coordinates (an ulp) is far below the margin.
-                    const bool listed =
-                        l.everywhere || k.w * l.w + k.u * l.u + k.v * l.v >=
-                                            (k.cos_a * l.cos_b - k.sin_a * l.sin_b) - kAngleMargin;
-                    if (listed) items_.push_back(static_cast<std::uint32_t>(i));
+                    const Local l = local[i];
+                    const std::uint64_t bit = std::uint64_t(1) << i;
+                    if (l.everywhere) {
+                        for (std::size_t c = 0; c < per_face; ++c) face_bits[c] |= bit;
+                        continue;
+                    }
+                    for (std::size_t c = 0; c < per_face; ++c)
+                        face_bits[c] |= cw[c] * l.w + cu[c] * l.u + cv[c] * l.v >=
+                                                (ccos[c] * l.cos_b - csin[c] * l.sin_b) - kAngleMargin
+                                            ? bit
+                                            : 0;
+                }
+            }
+            for (std::size_t cell = 0; cell < cells; ++cell) {
+                for (std::uint64_t set = bits_[cell]; set != 0; set &= set - 1) {
+                    std::uint32_t i = 0;
+                    while (((set >> i) & 1U) == 0) ++i;
+                    items_.push_back(i);
                 }
                 offsets_.push_back(static_cast<std::uint32_t>(items_.size()));
             }
+            return;
         }
-        // The same lists as bit sets, for up to 64 ellipsoids.
-        if (spheres.size() > kMaxBitsEllipsoids) return;
-        bits_.assign(cells, 0);
-        for (std::size_t cell = 0; cell < cells; ++cell)
-            for (std::uint32_t k = offsets_[cell]; k < offsets_[cell + 1]; ++k)
-                bits_[cell] |= std::uint64_t(1) << items_[k];
+        for (int face = 0; face < 6; ++face) {
+            locals(face);
+            for (const CellCone& k : cones) {
+                for (std::size_t i = 0; i < spheres.size(); ++i)
+                    if (listed(k, local[i])) items_.push_back(static_cast<std::uint32_t>(i));
+                offsets_.push_back(static_cast<std::uint32_t>(items_.size()));
+            }
+        }
     }
 
     // The ellipsoids that a ray from X in direction (dx, dy, dz) may meet: [first, last).
