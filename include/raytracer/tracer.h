@@ -17,6 +17,7 @@
 #include "raytracer/hit_packet.h"
 #include "raytracer/image.h"
 #include "raytracer/intersect_lanes.h"
+#include "raytracer/pair_blockers.h"
 #include "raytracer/power.h"
 #include "raytracer/scene.h"
 #include "raytracer/scene_precision.h"
@@ -107,7 +108,17 @@ public:
         // buffers' lists are bit sets and the prefilter works (not in float, whose
         // cells hit_colours() does not look up).
         packet_shadows_ = std::is_same_v<C, Real> && use_grids_ && prefilter_.enabled() &&
-                          ellipsoids_.size() <= DirectionGrid<C>::kMaxBitsEllipsoids;
+                          ellipsoids_.size() <= DirectionGrid<C>::kMaxBitsEllipsoids &&
+                          ellipsoids_.size() <= PairBlockers<Real>::kMaxEllipsoids;
+        if (packet_shadows_) {
+            std::vector<BoundingSphere<C>> spheres;
+            for (std::size_t j = 0; j < bounds_.size(); ++j) spheres.push_back(bounds_.sphere(j));
+            std::vector<Vec3<C>> positions;
+            for (const PointLight<Real>& l : lights_) positions.push_back(Vec3<C>::from(l.position));
+            pair_blockers_ = PairBlockers<Real>(
+                spheres, ellipsoids_, positions,
+                [&](std::size_t l, std::size_t j) { return enclosures_.light_within(l, j); });
+        }
     }
 
     // Working memory for one thread's rays.
@@ -454,7 +465,22 @@ private:
             // all lights (the mirror room's points are on it, so within it for every light
             // it encloses).
             std::uint64_t self_within = 0;
+            // Whether every lane's point lies in the ellipsoid's bounding sphere, so that
+            // pair_blockers_'s sets apply (hit points lie on the ellipsoid: always, but
+            // checked, as the sets' argument needs it).
+            bool in_sphere = false;
             if constexpr (std::is_same_v<C, Real>) {
+                if (packet_shadows_) {
+                    const BoundingSphere<C> b = bounds_.sphere(i);
+                    const C radius2 = b.radius * b.radius;
+                    std::uint64_t outside = 0;  // NaN points count as outside
+                    RT_VECTOR_LOOP
+                    for (int k = 0; k < kPacket; ++k) {
+                        const C x = p.px[k] - b.x, y = p.py[k] - b.y, z = p.pz[k] - b.z;
+                        outside |= x * x + y * y + z * z <= radius2 ? 0 : HitPacket<Real>::kLaneBit[k];
+                    }
+                    in_sphere = outside == 0;
+                }
                 if (packet_shadows_ && enclosures_.encloses_a_light(i))
                     self_within = enclosures_.template points_within<kPacket>(p.px, p.py, p.pz, i,
                                                                               HitPacket<Real>::kLaneBit);
@@ -467,7 +493,7 @@ private:
                 std::int32_t cells[kPacket];
                 for (std::int32_t& c : cells) c = -1;
                 if constexpr (std::is_same_v<C, Real>) {
-                    if (use_grids_) {
+                    if (use_grids_ && !packet_shadows_) {
                         Real fx[kPacket], fy[kPacket], fz[kPacket];
                         for (int k = 0; k < kPacket; ++k)
                             fx[k] = -p.tx[k], fy[k] = -p.ty[k], fz[k] = -p.tz[k];
@@ -478,7 +504,10 @@ private:
                 bool any_lit = true;
                 if constexpr (std::is_same_v<C, Real>) {
                     if (packet_shadows_)
-                        any_lit = shadow_lanes(p, i, li, cells, self_within, scratch) != 0, tested = true;
+                        any_lit =
+                            shadow_lanes(p, i, li, in_sphere ? pair_blockers_.set(i, li) : ~std::uint64_t(0),
+                                         self_within, scratch) != 0,
+                        tested = true;
                 }
                 for (int k = 0; k < count && !tested; ++k) {
                     if (p.front[k] == 0) continue;
@@ -517,8 +546,9 @@ private:
     // enclose light and point), so each lane gets in_shadow()'s boolean: the same bytes.
     // self_within: the lanes whose points Enclosures::points_within() ellipsoid self.
     // Returns the lit lanes as bits.
+    // may_block: the ellipsoids that can block some lane at all (PairBlockers).
     std::uint64_t shadow_lanes(HitPacket<Real>& p, std::uint32_t self, std::size_t li,
-                               const std::int32_t* cells, std::uint64_t self_within,
+                               std::uint64_t may_block, std::uint64_t self_within,
                                TraceScratch<Real>& scratch) const {
         const DirectionGrid<C>& grid = light_grids_[li];
         constexpr int N = kPacket;
@@ -531,16 +561,29 @@ private:
         // their lists add nothing, and they are never waiting.
         const Bits front = HitPacket<Real>::bits(p.front) & ((Bits(1) << p.count) - 1);
         const Bits self_clear = HitPacket<Real>::bits(p.self_clear);
+        // The own ellipsoid cannot block the lanes where self_clear holds, nor, where it
+        // encloses the light, those within it (contains_segments(), computed once).
+        const Bits self_free = self_clear | (enclosures_.light_within(li, self) ? self_within : 0);
+        if ((front & ~self_free) == 0) may_block &= ~(Bits(1) << self);
+        if (may_block == 0) {  // no ellipsoid can block any lane: no cells needed
+            p.light_lanes(front);
+            return front;
+        }
+        // The lanes' cells in the light buffer: point - light = -(L - P) exactly, so
+        // these are the cells in_shadow() would find; per lane, its cell's list as bits.
+        std::int32_t cells[N];
+        {
+            Real fx[N], fy[N], fz[N];
+            for (int k = 0; k < N; ++k) fx[k] = -p.tx[k], fy[k] = -p.ty[k], fz[k] = -p.tz[k];
+            grid.template cells<N>(fx, fy, fz, cells);
+        }
         Bits listed[N];
         Bits candidates = 0;
         for (int k = 0; k < N; ++k) {
             listed[k] = (front & kLane[k]) != 0 ? grid.cell_bits(cells[k]) : 0;
             candidates |= listed[k];
         }
-        // The own ellipsoid cannot block the lanes where self_clear holds, nor, where it
-        // encloses the light, those within it (contains_segments(), computed once).
-        const Bits self_free = self_clear | (enclosures_.light_within(li, self) ? self_within : 0);
-        if ((front & ~self_free) == 0) candidates &= ~(Bits(1) << self);
+        candidates &= may_block;
         Bits waiting = front;  // lanes not yet known to be shadowed
         // Ellipsoid j against the waiting lanes that list it; clears their bits when blocked.
         auto try_ellipsoid = [&](std::uint32_t j) {
@@ -726,6 +769,7 @@ private:
     bool packet_shadows_ = false;  // see shadow_lanes()
     Enclosures<Real> enclosures_;
     ShadowPrefilter<Real> prefilter_;
+    PairBlockers<Real> pair_blockers_;  // where packet_shadows_
     bool accelerate_ = true;
     std::vector<DirectionGrid<C>> light_grids_;
     V ambient_;
