@@ -11,8 +11,8 @@
 // ones do (no fused multiply-adds: CMakeLists.txt), so each pixel gets the same bits.
 // Where shade() skips a term (light behind, in shadow, R.V <= 0), the lane keeps its
 // sum by a select; no zero is added. Shadow rays are Tracer::shadow_lanes()'s (or
-// scalar, Tracer::hit_colours()), and the search for what each mirrored ray hits stays
-// scalar.
+// scalar, Tracer::hit_colours()), and what each mirrored ray hits is
+// Tracer::nearest_hits()'s.
 //
 // The loops with selects or a variable trip count around them (the sums, the whole
 // power, R.V) are marked RT_VECTOR_LOOP: GCC unrolled them completely first and then

@@ -440,9 +440,9 @@ private:
 
     // shade() for up to kPacket rays that hit ellipsoid i, ray k from (ox, oy, oz)[k]
     // along (dx, dy, dz)[k] at t[k] (hit_packet.h): the same operations lane by lane;
-    // shadow rays are tested for all lanes at once where shadow_lanes() can, the search
-    // for what a mirrored ray hits stays scalar, and the mirrored rays are shaded in
-    // packets again, grouped by the ellipsoid they hit.
+    // shadow rays are tested for all lanes at once where shadow_lanes() can, what the
+    // mirrored rays hit is found for all lanes at once (nearest_hits()), and the mirrored
+    // rays are shaded in packets again, grouped by the ellipsoid they hit.
     void hit_colours(std::uint32_t i, int count, const Real* ox, const Real* oy, const Real* oz,
                      const Real* dx, const Real* dy, const Real* dz, const Real* t, const bool* inside,
                      int reflections_left, TraceScratch<Real>& scratch, V* colours) const {
