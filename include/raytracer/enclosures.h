@@ -42,6 +42,9 @@ public:
         for (std::size_t l = 0; l < lights.size(); ++l)
             for (std::size_t i = 0; i < n_; ++i)
                 light_inside_[l * n_ + i] = unit_radius2(Vec3<C>::from(lights[l]), i) <= C(1) - C(1e-3);
+        any_light_inside_.assign(n_, 0);
+        for (std::size_t l = 0; l < lights.size(); ++l)
+            for (std::size_t i = 0; i < n_; ++i) any_light_inside_[i] |= light_inside_[l * n_ + i];
     }
 
     // True when the shadow ray from point to light light_index certainly is not blocked
@@ -57,6 +60,13 @@ public:
     std::uint64_t contains_segments(const C* px, const C* py, const C* pz, std::size_t light_index,
                                     std::size_t i, const std::uint64_t* lane_bits) const {
         if (!light_within(light_index, i)) return 0;
+        return points_within<N>(px, py, pz, i, lane_bits);
+    }
+    // Its part that does not depend on the light: the lanes whose points point_within()
+    // ellipsoid i. Double precision or wider only.
+    template <int N>
+    std::uint64_t points_within(const C* px, const C* py, const C* pz, std::size_t i,
+                                const std::uint64_t* lane_bits) const {
         const Vec3<C> centre = centre_[i], inverse = inverse_scale_[i];
         std::uint64_t within = 0;
         for (int k = 0; k < N; ++k) {
@@ -74,6 +84,8 @@ public:
         return !light_inside_.empty() && light_inside_[light_index * n_ + i];
     }
     static bool point_within(C o2) { return o2 <= C(1) + C(1e-10); }
+    // Whether light_within(l, i) holds for some light l.
+    bool encloses_a_light(std::size_t i) const { return !any_light_inside_.empty() && any_light_inside_[i]; }
 
 private:
     // |(p - centre) / scale|^2: below 1 inside, 1 on the surface. A product by the
@@ -85,7 +97,8 @@ private:
 
     std::size_t n_ = 0;
     std::vector<Vec3<C>> centre_, inverse_scale_;
-    std::vector<unsigned char> light_inside_;  // [light * n + ellipsoid]
+    std::vector<unsigned char> light_inside_;      // [light * n + ellipsoid]
+    std::vector<unsigned char> any_light_inside_;  // per ellipsoid
 };
 
 }  // namespace rt

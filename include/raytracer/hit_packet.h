@@ -11,8 +11,13 @@
 // ones do (no fused multiply-adds: CMakeLists.txt), so each pixel gets the same bits.
 // Where shade() skips a term (light behind, in shadow, R.V <= 0), the lane keeps its
 // sum by a select; no zero is added. Shadow rays are Tracer::shadow_lanes()'s (or
-// scalar, Tracer::hit_colours()), and the search for what each mirrored ray hits stays
-// scalar.
+// scalar, Tracer::hit_colours()), and what each mirrored ray hits is
+// Tracer::nearest_hits()'s.
+//
+// The loops with selects or a variable trip count around them (the sums, the whole
+// power, R.V) are marked RT_VECTOR_LOOP: GCC unrolled them completely first and then
+// left them as 8 scalar lanes with a branch each (measured: heavy 100x100 139.2 ->
+// 112.9 M instructions once vectorised).
 #pragma once
 
 #include <cmath>
@@ -23,7 +28,16 @@
 
 namespace rt {
 
+// Two vector registers of doubles per operation: 16 lanes with AVX-512, else 8.
+// Measured (heavy 400x400, one thread, task-clock medians of 11 interleaved runs,
+// AVX-512): 8 lanes 167.5 ms, 16 lanes 149.1 ms, 32 lanes 200.3 ms; the per-light work
+// that does not depend on the lanes (the candidate loop, the tries' bookkeeping) is
+// shared by twice the rays, while packets stay nearly as full.
+#if defined(__AVX512F__)
+inline constexpr int kPacket = 16;
+#else
 inline constexpr int kPacket = 8;
+#endif
 
 template <typename Real>
 struct HitPacket {
@@ -120,13 +134,14 @@ struct HitPacket {
                 self_test[k] * mask(scaled_length[k] * d * (cosine - self_slack) > Real(2000) * self_c[k]);
             lit[k] = 0;
         }
-        Real any = 0;
-        for (int k = 0; k < count; ++k) any += front[k];
-        return any != 0;
+        // Lanes from count on repeat the last ray, so all N lanes can be asked (a fixed
+        // vector loop instead of a scalar one over count).
+        return bits(front) != 0;
     }
 
     // shade(): colour += (Ip Kd * n_dot_l) * O where lit.
     void add_diffuse(const Vec3<Real>& diffuse, const Vec3<Real>& colour) {
+        RT_VECTOR_LOOP
         for (int k = 0; k < N; ++k) {
             const Real dr = r[k] + (diffuse.x * n_dot_l[k]) * colour.x;
             const Real dg = g[k] + (diffuse.y * n_dot_l[k]) * colour.y;
@@ -142,10 +157,14 @@ struct HitPacket {
     void specular_whole(const Vec3<Real>& specular, std::int32_t exponent) {
         Real r_dot_v[N], result[N], base[N];
         reflect(r_dot_v);
+        RT_VECTOR_LOOP
         for (int k = 0; k < N; ++k) result[k] = 1, base[k] = r_dot_v[k];
         for (std::int32_t bits = exponent; bits != 0; bits >>= 1) {
-            if (bits & 1)
+            if (bits & 1) {
+                RT_VECTOR_LOOP
                 for (int k = 0; k < N; ++k) result[k] *= base[k];
+            }
+            RT_VECTOR_LOOP
             for (Real& x : base) x *= x;
         }
         add_specular(specular, r_dot_v, result);
@@ -171,7 +190,12 @@ struct HitPacket {
 
     // Lane masks as bit sets, bit k for lane k (64-bit like the lanes of doubles, and
     // selects of constant bits rather than shifts by k, so that GCC vectorises these).
+#if defined(__AVX512F__)
+    static constexpr std::uint64_t kLaneBit[N] = {1,   2,   4,    8,    16,   32,   64,    128,
+                                                  256, 512, 1024, 2048, 4096, 8192, 16384, 32768};
+#else
     static constexpr std::uint64_t kLaneBit[N] = {1, 2, 4, 8, 16, 32, 64, 128};
+#endif
     static std::uint64_t bits(const Real* mask) {
         std::uint64_t set = 0;
         RT_VECTOR_LOOP
@@ -191,6 +215,7 @@ private:
     static Real mask(bool b) { return b ? Real(1) : Real(0); }
 
     void reflect(Real* r_dot_v) const {
+        RT_VECTOR_LOOP
         for (int k = 0; k < N; ++k) {
             const Real twice = 2 * n_dot_l[k];
             const Real rx = nx[k] * twice - lx[k], ry = ny[k] * twice - ly[k], rz = nz[k] * twice - lz[k];
@@ -199,6 +224,7 @@ private:
     }
 
     void add_specular(const Vec3<Real>& specular, const Real* r_dot_v, const Real* power) {
+        RT_VECTOR_LOOP
         for (int k = 0; k < N; ++k) {
             const bool adds = lit[k] * mask(r_dot_v[k] > 0) != 0;  // no &&: it would branch
             const Real sr = r[k] + specular.x * power[k];

@@ -26,6 +26,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "raytracer/compiler.h"
 #include "raytracer/direction_grid.h"
 #include "raytracer/ellipsoid.h"
 #include "raytracer/scene_precision.h"
@@ -149,6 +150,40 @@ public:
             cull[i] = in_reach * ((b > 0 ? C(1) : C(0)) + (b * b < dd * c ? C(1) : C(0)));
         }
         return compact(cull, out);
+    }
+
+    // candidates(origin, direction) for N rays at once, ray k from (ox, oy, oz)[k] along
+    // (dx, dy, dz)[k]: bit k of lanes[i] is set where ellipsoid i is a candidate of ray k.
+    // The same operations per lane, as loops over the lanes that GCC vectorises (one
+    // pass over the ellipsoids for all rays instead of one per ray). lanes: size() entries.
+    template <int N>
+    void candidate_lanes(const Real* ox, const Real* oy, const Real* oz, const Real* dx, const Real* dy,
+                         const Real* dz, std::uint32_t* lanes) const {
+        static_assert(N <= 32, "one bit per lane");
+        C x[N], y[N], z[N], u[N], v[N], w[N], dd[N];
+        std::uint32_t bit[N];
+        for (int k = 0; k < N; ++k) {
+            x[k] = C(ox[k]), y[k] = C(oy[k]), z[k] = C(oz[k]);
+            u[k] = C(dx[k]), v[k] = C(dy[k]), w[k] = C(dz[k]);
+            dd[k] = u[k] * u[k] + v[k] * v[k] + w[k] * w[k];
+            bit[k] = std::uint32_t(1) << k;
+        }
+        const std::size_t n = size();
+        for (std::size_t i = 0; i < n; ++i) {
+            const C cx = cx_[i], cy = cy_[i], cz = cz_[i], radius2 = radius2_[i], guard2 = guard2_[i];
+            std::uint32_t set = 0;
+            RT_VECTOR_LOOP
+            for (int k = 0; k < N; ++k) {
+                const C px = x[k] - cx, py = y[k] - cy, pz = z[k] - cz;
+                const C p2 = px * px + py * py + pz * pz;
+                const C c = p2 - radius2;
+                const C in_reach = p2 > radius2 && p2 <= guard2 ? C(1) : C(0);
+                const C b = px * u[k] + py * v[k] + pz * w[k];
+                const C cull = in_reach * ((b > 0 ? C(1) : C(0)) + (b * b < dd[k] * c ? C(1) : C(0)));
+                set |= cull == 0 ? bit[k] : 0;
+            }
+            lanes[i] = set;
+        }
     }
 
     // The same for a shadow ray towards light number light_index at t = 1: ellipsoids

@@ -16,6 +16,8 @@
 #include "raytracer/enclosures.h"
 #include "raytracer/hit_packet.h"
 #include "raytracer/image.h"
+#include "raytracer/intersect_lanes.h"
+#include "raytracer/pair_blockers.h"
 #include "raytracer/power.h"
 #include "raytracer/scene.h"
 #include "raytracer/scene_precision.h"
@@ -46,6 +48,7 @@ struct TraceScratch {
     std::vector<std::uint32_t> candidates;
     std::vector<typename SphereBounds<Real>::C> cull;  // per ellipsoid: culled when not 0
     std::vector<std::uint32_t> last_occluder;          // per light; kNone when none yet
+    std::vector<std::uint32_t> lanes;                  // per ellipsoid: the rays that may hit it
     static constexpr std::uint32_t kNone = 0xFFFFFFFFU;
 };
 
@@ -111,7 +114,17 @@ public:
         // buffers' lists are bit sets and the prefilter works (not in float, whose
         // cells hit_colours() does not look up).
         packet_shadows_ = std::is_same_v<C, Real> && use_grids_ && prefilter_.enabled() &&
-                          ellipsoids_.size() <= DirectionGrid<C>::kMaxBitsEllipsoids;
+                          ellipsoids_.size() <= DirectionGrid<C>::kMaxBitsEllipsoids &&
+                          ellipsoids_.size() <= PairBlockers<Real>::kMaxEllipsoids;
+        if (packet_shadows_) {
+            std::vector<BoundingSphere<C>> spheres;
+            for (std::size_t j = 0; j < bounds_.size(); ++j) spheres.push_back(bounds_.sphere(j));
+            std::vector<Vec3<C>> positions;
+            for (const PointLight<Real>& l : lights_) positions.push_back(Vec3<C>::from(l.position));
+            pair_blockers_ = PairBlockers<Real>(
+                spheres, ellipsoids_, positions,
+                [&](std::size_t l, std::size_t j) { return enclosures_.light_within(l, j); });
+        }
     }
 
     // Working memory for one thread's rays.
@@ -120,6 +133,7 @@ public:
         s.candidates.resize(ellipsoids_.size());
         s.cull.resize(ellipsoids_.size());
         s.last_occluder.assign(lights_.size(), TraceScratch<Real>::kNone);
+        s.lanes.resize(ellipsoids_.size());
         return s;
     }
 
@@ -247,6 +261,54 @@ public:
         TraceScratch<Real> scratch = make_scratch();
         bounds_.prepare(origin, scratch.origin);
         return nearest_hit(origin, scratch.origin, direction, min_t, scratch);
+    }
+
+    // The nearest hits of kPacket rays with t > min_t, ray k from (ox, oy, oz)[k] along
+    // (dx, dy, dz)[k], as reflection() finds them (bounds_.candidates() from the ray's
+    // origin, then closest()): index[k] is the ellipsoid (kNone for none), t[k] its root,
+    // inside[k] whether the far root was taken.
+    //
+    // WHY: one culling pass over the bounding spheres for all rays
+    // (SphereBounds::candidate_lanes()), and each ellipsoid some ray may hit intersected
+    // for all lanes at once (intersect_lanes()), in vector instructions. Each lane gets
+    // the roots intersect() gives, for exactly the ellipsoids its own culling leaves,
+    // taken in increasing order by closest()'s rule: the same hit, t and flag.
+    void nearest_hits(const Real* ox, const Real* oy, const Real* oz, const Real* dx, const Real* dy,
+                      const Real* dz, Real min_t, TraceScratch<Real>& scratch, std::uint32_t* index, Real* t,
+                      bool* inside) const {
+        constexpr int N = kPacket;
+        std::uint32_t* lanes = scratch.lanes.data();
+        bounds_.template candidate_lanes<N>(ox, oy, oz, dx, dy, dz, lanes);
+        min_t *= Real(1) + Real(8) * scene_epsilon<Real>();  // as in closest()
+        Real best[N], found[N], far_root[N];
+        for (int k = 0; k < N; ++k)
+            best[k] = 0, found[k] = 0, far_root[k] = 0, index[k] = TraceScratch<Real>::kNone;
+        const std::size_t n = ellipsoids_.size();
+        for (std::size_t i = 0; i < n; ++i) {
+            const std::uint32_t set = lanes[i];
+            if (set == 0) continue;
+            Real hit[N], near[N], far[N], take[N], listed[N];
+            intersect_lanes<N>(ellipsoids_[i], ox, oy, oz, dx, dy, dz, hit, near, far);
+            RT_VECTOR_LOOP
+            for (int k = 0; k < N; ++k)
+                listed[k] = (set & HitPacket<Real>::kLaneBit[k]) != 0 ? Real(1) : Real(0);
+            // closest(): inside = !(near > min_t); t = inside ? far : near; taken when
+            // t > min_t and nothing nearer was found. (Products of 0/1 masks rather than
+            // && and bools, which keep GCC's loop scalar.)
+            RT_VECTOR_LOOP
+            for (int k = 0; k < N; ++k) {
+                const Real beyond = near[k] > min_t ? Real(1) : Real(0);
+                const Real root = beyond != 0 ? near[k] : far[k];
+                const Real nearer = found[k] == 0 ? Real(1) : (root < best[k] ? Real(1) : Real(0));
+                const Real taken = listed[k] * hit[k] * (root > min_t ? Real(1) : Real(0)) * nearer;
+                take[k] = taken;
+                best[k] = taken != 0 ? root : best[k];
+                far_root[k] = taken != 0 ? Real(1) - beyond : far_root[k];
+                found[k] = taken != 0 ? Real(1) : found[k];
+            }
+            for (int k = 0; k < N; ++k) index[k] = take[k] != 0 ? std::uint32_t(i) : index[k];
+        }
+        for (int k = 0; k < N; ++k) t[k] = best[k], inside[k] = far_root[k] != 0;
     }
 
     // A light is blocked when any ellipsoid lies on the segment from the point to it.
@@ -384,9 +446,9 @@ private:
 
     // shade() for up to kPacket rays that hit ellipsoid i, ray k from (ox, oy, oz)[k]
     // along (dx, dy, dz)[k] at t[k] (hit_packet.h): the same operations lane by lane;
-    // shadow rays are tested for all lanes at once where shadow_lanes() can, the search
-    // for what a mirrored ray hits stays scalar, and the mirrored rays are shaded in
-    // packets again, grouped by the ellipsoid they hit.
+    // shadow rays are tested for all lanes at once where shadow_lanes() can, what the
+    // mirrored rays hit is found for all lanes at once (nearest_hits()), and the mirrored
+    // rays are shaded in packets again, grouped by the ellipsoid they hit.
     void hit_colours(std::uint32_t i, int count, const Real* ox, const Real* oy, const Real* oz,
                      const Real* dx, const Real* dy, const Real* dz, const Real* t, const bool* inside,
                      int reflections_left, TraceScratch<Real>& scratch, V* colours) const {
@@ -405,6 +467,30 @@ private:
             p.self_terms(e.scale);
             if (!surface.no_specular) p.viewer();
             const LightTerms* terms = light_terms_.data() + std::size_t(i) * lights_.size();
+            // The lanes whose points lie within the own ellipsoid for Enclosures, once for
+            // all lights (the mirror room's points are on it, so within it for every light
+            // it encloses).
+            std::uint64_t self_within = 0;
+            // Whether every lane's point lies in the ellipsoid's bounding sphere, so that
+            // pair_blockers_'s sets apply (hit points lie on the ellipsoid: always, but
+            // checked, as the sets' argument needs it).
+            bool in_sphere = false;
+            if constexpr (std::is_same_v<C, Real>) {
+                if (packet_shadows_) {
+                    const BoundingSphere<C> b = bounds_.sphere(i);
+                    const C radius2 = b.radius * b.radius;
+                    std::uint64_t outside = 0;  // NaN points count as outside
+                    RT_VECTOR_LOOP
+                    for (int k = 0; k < kPacket; ++k) {
+                        const C x = p.px[k] - b.x, y = p.py[k] - b.y, z = p.pz[k] - b.z;
+                        outside |= x * x + y * y + z * z <= radius2 ? 0 : HitPacket<Real>::kLaneBit[k];
+                    }
+                    in_sphere = outside == 0;
+                }
+                if (packet_shadows_ && enclosures_.encloses_a_light(i))
+                    self_within = enclosures_.template points_within<kPacket>(p.px, p.py, p.pz, i,
+                                                                              HitPacket<Real>::kLaneBit);
+            }
             for (std::size_t li = 0; li < lights_.size(); ++li) {
                 if (!p.light(lights_[li].position, kSelfSlack)) continue;  // behind every ray's point
                 // The lanes' cells in the light buffer at once: point - light = -(L - P)
@@ -413,7 +499,7 @@ private:
                 std::int32_t cells[kPacket];
                 for (std::int32_t& c : cells) c = -1;
                 if constexpr (std::is_same_v<C, Real>) {
-                    if (use_grids_) {
+                    if (use_grids_ && !packet_shadows_) {
                         Real fx[kPacket], fy[kPacket], fz[kPacket];
                         for (int k = 0; k < kPacket; ++k)
                             fx[k] = -p.tx[k], fy[k] = -p.ty[k], fz[k] = -p.tz[k];
@@ -421,8 +507,13 @@ private:
                     }
                 }
                 bool tested = false;
+                bool any_lit = true;
                 if constexpr (std::is_same_v<C, Real>) {
-                    if (packet_shadows_) shadow_lanes(p, i, li, cells, scratch), tested = true;
+                    if (packet_shadows_)
+                        any_lit =
+                            shadow_lanes(p, i, li, in_sphere ? pair_blockers_.set(i, li) : ~std::uint64_t(0),
+                                         self_within, scratch) != 0,
+                        tested = true;
                 }
                 for (int k = 0; k < count && !tested; ++k) {
                     if (p.front[k] == 0) continue;
@@ -432,6 +523,8 @@ private:
                                   p.self_clear[k] != 0 ? i : TraceScratch<Real>::kNone, cells[k]);
                     p.lit[k] = shadowed ? Real(0) : Real(1);
                 }
+                // No lane lit: the sums below would keep every lane's colour (selects).
+                if (!any_lit) continue;
                 p.add_diffuse(terms[li].diffuse, e.colour);
                 if (surface.no_specular) continue;
                 if (surface.exponent >= 0) {
@@ -457,8 +550,12 @@ private:
     // does not matter; a lane is only tried against the ellipsoids in_shadow() could
     // try (its cell's list, less the self ellipsoid where self_clear and those that
     // enclose light and point), so each lane gets in_shadow()'s boolean: the same bytes.
-    void shadow_lanes(HitPacket<Real>& p, std::uint32_t self, std::size_t li, const std::int32_t* cells,
-                      TraceScratch<Real>& scratch) const {
+    // self_within: the lanes whose points Enclosures::points_within() ellipsoid self.
+    // Returns the lit lanes as bits.
+    // may_block: the ellipsoids that can block some lane at all (PairBlockers).
+    std::uint64_t shadow_lanes(HitPacket<Real>& p, std::uint32_t self, std::size_t li,
+                               std::uint64_t may_block, std::uint64_t self_within,
+                               TraceScratch<Real>& scratch) const {
         const DirectionGrid<C>& grid = light_grids_[li];
         constexpr int N = kPacket;
         using Bits = std::uint64_t;  // bit k for lane k
@@ -470,12 +567,29 @@ private:
         // their lists add nothing, and they are never waiting.
         const Bits front = HitPacket<Real>::bits(p.front) & ((Bits(1) << p.count) - 1);
         const Bits self_clear = HitPacket<Real>::bits(p.self_clear);
+        // The own ellipsoid cannot block the lanes where self_clear holds, nor, where it
+        // encloses the light, those within it (contains_segments(), computed once).
+        const Bits self_free = self_clear | (enclosures_.light_within(li, self) ? self_within : 0);
+        if ((front & ~self_free) == 0) may_block &= ~(Bits(1) << self);
+        if (may_block == 0) {  // no ellipsoid can block any lane: no cells needed
+            p.light_lanes(front);
+            return front;
+        }
+        // The lanes' cells in the light buffer: point - light = -(L - P) exactly, so
+        // these are the cells in_shadow() would find; per lane, its cell's list as bits.
+        std::int32_t cells[N];
+        {
+            Real fx[N], fy[N], fz[N];
+            for (int k = 0; k < N; ++k) fx[k] = -p.tx[k], fy[k] = -p.ty[k], fz[k] = -p.tz[k];
+            grid.template cells<N>(fx, fy, fz, cells);
+        }
         Bits listed[N];
         Bits candidates = 0;
         for (int k = 0; k < N; ++k) {
             listed[k] = (front & kLane[k]) != 0 ? grid.cell_bits(cells[k]) : 0;
             candidates |= listed[k];
         }
+        candidates &= may_block;
         Bits waiting = front;  // lanes not yet known to be shadowed
         // Ellipsoid j against the waiting lanes that list it; clears their bits when blocked.
         auto try_ellipsoid = [&](std::uint32_t j) {
@@ -483,9 +597,10 @@ private:
             RT_VECTOR_LOOP
             for (int k = 0; k < N; ++k) lanes |= ((listed[k] >> j) & 1U) != 0 ? kLane[k] : 0;
             lanes &= waiting;
-            if (j == self) lanes &= ~self_clear;
-            if (lanes == 0) return;
-            lanes &= ~enclosures_.template contains_segments<N>(p.px, p.py, p.pz, li, j, kLane);
+            if (j == self)
+                lanes &= ~self_free;
+            else if (lanes != 0)
+                lanes &= ~enclosures_.template contains_segments<N>(p.px, p.py, p.pz, li, j, kLane);
             if (lanes == 0) return;
             const auto answer = prefilter_.template decide_lanes<N>(p.px, p.py, p.pz, p.tx, p.ty, p.tz, j);
             Bits blocked = 0, unsure = 0;
@@ -514,6 +629,7 @@ private:
             if (candidates & 1U) try_ellipsoid(j);
         // Lit: the light in front and no blocker found.
         p.light_lanes(waiting);
+        return waiting;
     }
 
     // reflection() for the rays of a packet; adds seen * kr to each lane's colour.
@@ -523,18 +639,10 @@ private:
         std::uint32_t next[kPacket];
         Real next_t[kPacket];
         bool next_inside[kPacket];
-        for (int k = 0; k < p.count; ++k) {
-            const V point{p.px[k], p.py[k], p.pz[k]}, mirrored{mx[k], my[k], mz[k]};
-            const std::uint32_t* first = scratch.candidates.data();
-            const std::uint32_t* last =
-                first + bounds_.candidates(point, mirrored, scratch.candidates.data(), scratch.cull.data());
-            const Hit hit = closest(first, last, point, mirrored, Real(kReflectedRayMinT));
-            // A reflected ray that hits nothing returns black, unlike an eye ray.
-            next[k] = hit.ellipsoid == nullptr
-                          ? TraceScratch<Real>::kNone
-                          : static_cast<std::uint32_t>(hit.ellipsoid - ellipsoids_.data());
-            next_t[k] = hit.t, next_inside[k] = hit.inside;
-        }
+        // What each mirrored ray hits (lanes from p.count on repeat the last ray). A
+        // reflected ray that hits nothing returns black, unlike an eye ray.
+        nearest_hits(p.px, p.py, p.pz, mx, my, mz, Real(kReflectedRayMinT), scratch, next, next_t,
+                     next_inside);
         V seen[kPacket] = {};
         bool done[kPacket] = {};
         for (int k = 0; k < p.count; ++k) {
@@ -667,6 +775,7 @@ private:
     bool packet_shadows_ = false;  // see shadow_lanes()
     Enclosures<Real> enclosures_;
     ShadowPrefilter<Real> prefilter_;
+    PairBlockers<Real> pair_blockers_;  // where packet_shadows_
     bool accelerate_ = true;
     std::vector<DirectionGrid<C>> light_grids_;
     V ambient_;

@@ -1,0 +1,100 @@
+// Per ellipsoid i and light l, the ellipsoids that can block a shadow ray from any point
+// of i's bounding sphere to l, as a bit set (up to 64 ellipsoids), computed once.
+//
+// WHY: a packet's shadow candidates came from each lane's light-buffer cell, a dozen
+// vector operations and a lookup per lane and light, even where the answer is known in
+// advance: in the course scenes a sphere's light often has no other sphere anywhere
+// near the way, and in the mirror room the room encloses every small ellipsoid and
+// every light. Two exact reasons to leave ellipsoid j out for all points P of the
+// bounding sphere S_i (centre c, radius R):
+// - every segment from such a P to L lies within distance R of the segment from c to
+//   L (P + t (L - P) is (1 - t)(P - c) away from c + t (L - c)), so j's bounding sphere
+//   (radius r_j, inflated by 1e-3 over the ellipsoid: sphere_bounds.h) cannot meet it
+//   when dist(c_j, [c, L]) > R + r_j; then intersect() finds no root on the segment, the
+//   argument of the light buffers;
+// - j encloses the light (Enclosures::light_within()) and S_i with a margin of 1e-6 in
+//   j's unit space: then Enclosures::point_within() holds for each point of S_i, and
+//   contains_segment() clears j.
+// The caller checks that each lane's point lies in S_i (hit points lie on the
+// ellipsoid, far inside the inflation) before it uses the set. The rounding here is
+// covered by a slack of 1e-9 of the coordinates' magnitudes (the errors are a few 1e-16
+// of them).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "raytracer/direction_grid.h"
+#include "raytracer/ellipsoid.h"
+#include "raytracer/scene_precision.h"
+
+namespace rt {
+
+template <typename Real>
+class PairBlockers {
+public:
+    using C = AtLeastDouble<Real>;
+    static constexpr std::size_t kMaxEllipsoids = 64;
+
+    PairBlockers() = default;
+
+    // spheres: the inflated bounding spheres; encloses(l, j): Enclosures::light_within(l, j).
+    template <typename Encloses>
+    PairBlockers(const std::vector<BoundingSphere<C>>& spheres,
+                 const std::vector<Ellipsoid<Real>>& ellipsoids, const std::vector<Vec3<C>>& lights,
+                 Encloses encloses)
+        : lights_(lights.size()) {
+        using std::abs;
+        using std::sqrt;
+        const std::size_t n = spheres.size();
+        if (n > kMaxEllipsoids) return;
+        sets_.assign(n * lights_, 0);
+        for (std::size_t i = 0; i < n; ++i) {
+            const BoundingSphere<C>& si = spheres[i];
+            for (std::size_t l = 0; l < lights_; ++l) {
+                const Vec3<C>& light = lights[l];
+                const C ux = light.x - si.x, uy = light.y - si.y, uz = light.z - si.z;
+                const C uu = ux * ux + uy * uy + uz * uz;
+                const C magnitude = abs(si.x) + abs(si.y) + abs(si.z) + si.radius + abs(light.x) +
+                                    abs(light.y) + abs(light.z);
+                std::uint64_t set = 0;
+                for (std::size_t j = 0; j < n; ++j) {
+                    const BoundingSphere<C>& sj = spheres[j];
+                    const C wx = sj.x - si.x, wy = sj.y - si.y, wz = sj.z - si.z;
+                    const C s = uu > 0 ? (wx * ux + wy * uy + wz * uz) / uu : C(0);
+                    const C t = s > 0 ? (s < 1 ? s : C(1)) : C(0);
+                    const C ex = wx - t * ux, ey = wy - t * uy, ez = wz - t * uz;
+                    const C slack = C(kSlack) * (magnitude + abs(sj.x) + abs(sj.y) + abs(sj.z) + sj.radius);
+                    const C reach = si.radius + sj.radius + slack;
+                    bool may_block = !(ex * ex + ey * ey + ez * ez > reach * reach);  // NaN: kept
+                    if (may_block && j != i && encloses(l, j)) {
+                        const Ellipsoid<Real>& e = ellipsoids[j];
+                        const C sx = abs(C(e.scale.x)), sy = abs(C(e.scale.y)), sz = abs(C(e.scale.z));
+                        const C ox = (si.x - C(e.centre.x)) / sx, oy = (si.y - C(e.centre.y)) / sy,
+                                oz = (si.z - C(e.centre.z)) / sz;
+                        const C inside =
+                            sqrt(ox * ox + oy * oy + oz * oz) + si.radius / std::min({sx, sy, sz});
+                        if (inside <= C(1) - C(1e-6)) may_block = false;
+                    }
+                    if (may_block) set |= std::uint64_t(1) << j;
+                }
+                sets_[i * lights_ + l] = set;
+            }
+        }
+    }
+
+    bool usable() const { return !sets_.empty(); }
+    // The set of ellipsoid i and light l (usable() only).
+    std::uint64_t set(std::size_t i, std::size_t l) const { return sets_[i * lights_ + l]; }
+
+private:
+    static constexpr double kSlack = 1e-9;
+
+    std::size_t lights_ = 0;
+    std::vector<std::uint64_t> sets_;  // [ellipsoid * lights + light]
+};
+
+}  // namespace rt

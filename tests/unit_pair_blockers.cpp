@@ -1,0 +1,84 @@
+// PairBlockers leaves ellipsoid j out of the set of (ellipsoid i, light l) only where no
+// shadow ray from a point of i's bounding sphere to l can be blocked by j: for random
+// scenes (a room enclosing lights among them, thin and negated ellipsoids), points on i
+// and inside its bounding sphere, every j outside the set must give intersect()'s "not
+// blocked" (no root in (0.001, 1)); and the sets must leave out a good share.
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include "check.h"
+#include "raytracer/ellipsoid.h"
+#include "raytracer/enclosures.h"
+#include "raytracer/pair_blockers.h"
+#include "raytracer/sphere_bounds.h"
+
+namespace {
+
+double uniform(std::mt19937& g, double lo, double hi) {
+    return lo + (hi - lo) * (static_cast<double>(g()) / 4294967296.0);
+}
+
+bool blocks(const rt::Ellipsoid<double>& e, const rt::Vec3<double>& point, const rt::Vec3<double>& to_light) {
+    const rt::Roots<double> r = rt::intersect(e, point, to_light);
+    return r.hit && ((r.near > 0.001 && r.near < 1) || (r.far > 0.001 && r.far < 1));
+}
+
+}  // namespace
+
+TEST(pair_blockers_leave_out_only_ellipsoids_that_cannot_block) {
+    long long wrong = 0, left_out = 0, pairs = 0, blocked = 0;
+    for (unsigned seed = 1; seed <= 40; ++seed) {
+        std::mt19937 g(seed);
+        std::vector<rt::Ellipsoid<double>> ellipsoids;
+        const int n = 3 + static_cast<int>(g() % 14);
+        for (int i = 0; i < n; ++i) {
+            rt::SphereSpec s{};
+            s.centre = {uniform(g, -5, 5), uniform(g, -5, 5), uniform(g, -10, 0)};
+            s.scale = {uniform(g, 0.1, 2), uniform(g, 0.1, 2), uniform(g, 0.1, 2)};
+            if (i % 3 == 1) s.scale.y = -s.scale.y;
+            if (i % 7 == 3) s.scale.z = 0.001;
+            if (i == 0) s.centre = {0, 0, -5}, s.scale = {14, 10, 16};    // a room
+            if (i == 1) s.centre = {13.5, 0, -5}, s.scale = {1.5, 1, 1};  // through its wall
+            ellipsoids.push_back(rt::make_ellipsoid<double>(s));
+        }
+        std::vector<rt::Vec3<double>> lights;
+        for (int l = 0; l < 4; ++l)
+            lights.push_back({uniform(g, -6, 6), uniform(g, -6, 6), uniform(g, -12, 2)});
+        const rt::SphereBounds<double> bounds(ellipsoids, lights);
+        const rt::Enclosures<double> enclosures(ellipsoids, lights);
+        std::vector<rt::BoundingSphere<double>> spheres;
+        for (std::size_t i = 0; i < bounds.size(); ++i) spheres.push_back(bounds.sphere(i));
+        const rt::PairBlockers<double> sets(spheres, ellipsoids, lights, [&](std::size_t l, std::size_t j) {
+            return enclosures.light_within(l, j);
+        });
+        CHECK(sets.usable());
+        for (std::size_t i = 0; i < ellipsoids.size(); ++i)
+            for (std::size_t l = 0; l < lights.size(); ++l) {
+                const std::uint64_t set = sets.set(i, l);
+                for (std::size_t j = 0; j < ellipsoids.size(); ++j) {
+                    ++pairs;
+                    if ((set >> j) & 1U) continue;
+                    ++left_out;
+                    for (int round = 0; round < 200; ++round) {
+                        // A point on i (rounded) or anywhere inside its bounding sphere.
+                        rt::Vec3<double> u{uniform(g, -1, 1), uniform(g, -1, 1), uniform(g, -1, 1)};
+                        u = u * (1 / std::sqrt(dot(u, u)));
+                        const rt::Ellipsoid<double>& e = ellipsoids[i];
+                        const rt::BoundingSphere<double>& s = spheres[i];
+                        const rt::Vec3<double> point =
+                            round % 2 ? e.centre + u * e.scale
+                                      : rt::Vec3<double>{s.x, s.y, s.z} + u * (s.radius * uniform(g, 0, 1));
+                        const bool b = blocks(ellipsoids[j], point, lights[l] - point);
+                        wrong += b;
+                        blocked += b;
+                    }
+                }
+            }
+    }
+    CHECK(wrong == 0);
+    CHECK(left_out > pairs / 4);  // the sets leave out a good share
+    CHECK(blocked == 0);
+}
