@@ -160,6 +160,7 @@ long long differing_cells(unsigned seed, long long& listed) {
     std::mt19937 g(seed);
     const int n = 1 + static_cast<int>(g() % 40);
     std::vector<rt::BoundingSphere<C>> spheres;
+    spheres.reserve(static_cast<std::size_t>(n));
     for (int i = 0; i < n; ++i)
         spheres.push_back({C(uniform(g, -8, 8)), C(uniform(g, -8, 8)), C(uniform(g, -16, 2)),
                            C(i % 9 == 4 ? 30 : uniform(g, 0.01, 3))});  // some around the light

@@ -44,9 +44,9 @@ TEST(pair_blockers_leave_out_only_ellipsoids_that_cannot_block) {
             if (i == 1) s.centre = {13.5, 0, -5}, s.scale = {1.5, 1, 1};  // through its wall
             ellipsoids.push_back(rt::make_ellipsoid<double>(s));
         }
-        std::vector<rt::Vec3<double>> lights;
-        for (int l = 0; l < 4; ++l)
-            lights.push_back({uniform(g, -6, 6), uniform(g, -6, 6), uniform(g, -12, 2)});
+        std::vector<rt::Vec3<double>> lights(4);
+        for (rt::Vec3<double>& light : lights)
+            light = {uniform(g, -6, 6), uniform(g, -6, 6), uniform(g, -12, 2)};
         const rt::SphereBounds<double> bounds(ellipsoids, lights);
         const rt::Enclosures<double> enclosures(ellipsoids, lights);
         std::vector<rt::BoundingSphere<double>> spheres;
