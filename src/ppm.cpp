@@ -43,10 +43,10 @@ bool replace_file(const fs::path& from, const fs::path& to, std::string& error) 
 #endif
 }
 
-// A name beside the target, so that the final rename stays on one file system.
-// A name beside the target that no other run picks at the same time: the target's name
-// and 64 bits mixed (splitmix64's finaliser) from the clock's nanoseconds and addresses
-// that address-space randomisation makes differ between processes.
+// A name beside the target, so that the final rename stays on one file system, and
+// that no other run picks at the same time: the target's name and 64 bits mixed
+// (splitmix64's finaliser) from the clock's nanoseconds and addresses that address-space
+// randomisation makes differ between processes.
 // WHY not std::random_device and an ostringstream: together 0.03 to 0.07 ms here (the
 // device instruction traps in this virtual machine; a first stream sets up locales).
 fs::path temporary_name_for(const fs::path& target) {
@@ -65,6 +65,7 @@ fs::path temporary_name_for(const fs::path& target) {
     return name;
 }
 
+// Why a file could not be created at target, as precisely as the file system tells.
 std::string cannot_create(const std::string& name, const fs::path& target) {
     std::error_code ec;
     const fs::path folder = target.has_parent_path() ? target.parent_path() : fs::path(".");
@@ -185,8 +186,7 @@ std::string P6Writer::commit() {
 }
 
 std::string save_imageP6(PendingFile& file, int width, int height, const unsigned char* pixels) {
-    if (!file.error().empty()) return file.error();
-    P6Writer writer(file, width, height);
+    P6Writer writer(file, width, height);  // commit() reports the file's error, if any
     writer.rows(pixels, static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3);
     return writer.commit();
 }
