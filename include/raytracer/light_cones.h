@@ -1,0 +1,171 @@
+// Per light, each ellipsoid's bounding sphere as the light sees it: the unit direction
+// to its centre, the cosine and sine of its angular radius and its nearest distance.
+// Two tests of shadow rays against them, both conservative: the lanes of a packet whose
+// segment to the light may meet a sphere (one test per lane, vector instructions), and,
+// before that, the spheres that the segment from ANY point of a ball around a packet's
+// points may meet (one test per sphere, vector instructions over the spheres).
+//
+// WHY: the light buffers (direction_grid.h) gave each lane its cell's list: a face
+// choice, a division, two roundings to a cell and a gather, for every lane and light,
+// even where no sphere is near any lane's segment (half the packet-light pairs of the
+// heavy scene). The ball test rules those out with one scalar set-up and a vector loop
+// over the spheres, and the lane test is then only run for the spheres it leaves (under
+// two per pair on the heavy scene). Both look at the segment itself, not at a cell of
+// directions, and also rule out spheres beyond the point: fewer tries.
+//
+// Exactness (the light buffers' argument): a segment from P to the light L that meets a
+// sphere (centre S, radius R, inflated over the ellipsoid: sphere_bounds.h) has a point X
+// in it, so the direction P - L lies within the sphere's angular radius b of S - L
+// (sin b = R / |S - L|), and |X - L| <= |P - L| gives |P - L| >= |S - L| - R. A ball
+// (c, r) of points seen from L lies within angle a (sin a = r / |c - L|) of c - L, at
+// distances up to |c - L| + r; its segments can meet the sphere only if the angle between
+// c - L and S - L is at most a + b, i.e. its cosine is at least cos(a + b) = cos a cos b -
+// sin a sin b (a + b <= pi). A sphere ruled out this way cannot be met by intersect() on
+// the segment, which is what the unculled renderer would test. Rounding of a few ulps is
+// covered by kMargin on the cosines and distances (as the light buffers' kAngleMargin);
+// a sphere around the light is seen everywhere, and NaN compares as "may meet".
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "raytracer/compiler.h"
+#include "raytracer/direction_grid.h"
+#include "raytracer/vec3.h"
+
+namespace rt {
+
+template <typename C>
+class LightCones {
+public:
+    static constexpr std::size_t kMaxSpheres = 64;  // the sets are 64-bit
+
+    // A ball around a packet's points (usable = false: unknown, nothing is ruled out).
+    struct Ball {
+        C x = 0, y = 0, z = 0, radius = 0;
+        bool usable = false;
+    };
+
+    LightCones() = default;
+
+    LightCones(const std::vector<BoundingSphere<C>>& spheres, const std::vector<Vec3<C>>& lights)
+        : n_(spheres.size()), stride_((spheres.size() + 7) / 8 * 8) {
+        using std::sqrt;
+        if (n_ > kMaxSpheres) return;
+        const std::size_t size = stride_ * lights.size();
+        // Padding spheres are never met: no direction has cosine 2 with a unit vector.
+        ux_.assign(size, 0), uy_.assign(size, 0), uz_.assign(size, 0);
+        cos_b_.assign(size, 2), sin_b_.assign(size, 0), near_.assign(size, 0);
+        everywhere_.assign(lights.size(), 0);
+        for (std::size_t l = 0; l < lights.size(); ++l)
+            for (std::size_t j = 0; j < n_; ++j) {
+                const BoundingSphere<C>& s = spheres[j];
+                const C wx = s.x - lights[l].x, wy = s.y - lights[l].y, wz = s.z - lights[l].z;
+                const C dist = sqrt(wx * wx + wy * wy + wz * wz);
+                if (!(dist > s.radius * (C(1) + C(kMargin)))) {  // around the light (or NaN)
+                    everywhere_[l] |= std::uint64_t(1) << j;
+                    continue;
+                }
+                const std::size_t at = l * stride_ + j;
+                ux_[at] = wx / dist, uy_[at] = wy / dist, uz_[at] = wz / dist;
+                sin_b_[at] = s.radius / dist;
+                cos_b_[at] = sqrt(C(1) - sin_b_[at] * sin_b_[at]);
+                near_[at] = dist * (C(1) - C(kMargin)) - s.radius * (C(1) + C(kMargin));
+            }
+    }
+
+    bool usable() const { return !everywhere_.empty(); }
+
+    // A ball around the N points (px, py, pz)[k]: the centre of their box and half its
+    // diagonal, widened by kMargin; not usable where a coordinate is not finite.
+    template <int N>
+    static Ball ball(const C* px, const C* py, const C* pz) {
+        C lo_x = px[0], hi_x = px[0], lo_y = py[0], hi_y = py[0], lo_z = pz[0], hi_z = pz[0];
+        C finite = 0;  // 0 while every coordinate is finite (x - x is 0, else NaN)
+        for (int k = 0; k < N; ++k) {
+            lo_x = px[k] < lo_x ? px[k] : lo_x, hi_x = px[k] > hi_x ? px[k] : hi_x;
+            lo_y = py[k] < lo_y ? py[k] : lo_y, hi_y = py[k] > hi_y ? py[k] : hi_y;
+            lo_z = pz[k] < lo_z ? pz[k] : lo_z, hi_z = pz[k] > hi_z ? pz[k] : hi_z;
+            finite += (px[k] - px[k]) + (py[k] - py[k]) + (pz[k] - pz[k]);
+        }
+        using std::sqrt;
+        Ball b;
+        b.x = (lo_x + hi_x) / 2, b.y = (lo_y + hi_y) / 2, b.z = (lo_z + hi_z) / 2;
+        const C ex = hi_x - lo_x, ey = hi_y - lo_y, ez = hi_z - lo_z;
+        b.radius = sqrt(ex * ex + ey * ey + ez * ez) / 2 * (C(1) + C(kMargin));
+        b.usable =
+            finite == 0 && b.radius - b.radius == 0 && b.x - b.x == 0 && b.y - b.y == 0 && b.z - b.z == 0;
+        return b;
+    }
+
+    // Of light l: the spheres among `among` that a segment from some point of the ball
+    // to the light may meet.
+    std::uint64_t packet(std::size_t l, const Vec3<C>& light, const Ball& b, std::uint64_t among) const {
+        using std::sqrt;
+        if (among == 0 || !b.usable) return among;
+        const C wx = b.x - light.x, wy = b.y - light.y, wz = b.z - light.z;
+        const C dist2 = wx * wx + wy * wy + wz * wz;
+        const C dist = sqrt(dist2);
+        if (!(dist > b.radius * (C(1) + C(kMargin)))) return among;  // the light is in the ball
+        // dist cos(a) and dist sin(a): no division, and two square roots side by side.
+        const C dist_cos_a = sqrt(dist2 - b.radius * b.radius), dist_sin_a = b.radius;
+        const C margin = dist * C(kMargin);
+        const C reach = dist + b.radius;
+        const std::size_t base = l * stride_;
+        std::uint64_t set = 0;
+        for (std::size_t start = 0; start < stride_; start += 8) {
+            const C *ux = &ux_[base + start], *uy = &uy_[base + start], *uz = &uz_[base + start];
+            const C *cos_b = &cos_b_[base + start], *sin_b = &sin_b_[base + start],
+                    *near = &near_[base + start];
+            const std::uint64_t* bits = kBit + start;
+            RT_VECTOR_LOOP
+            for (int j = 0; j < 8; ++j) {
+                const C along = wx * ux[j] + wy * uy[j] + wz * uz[j];
+                const C least = dist_cos_a * cos_b[j] - dist_sin_a * sin_b[j] - margin;
+                // Masks rather than ||, which keeps GCC's loop scalar.
+                const C out = (along < least ? C(1) : C(0)) + (reach < near[j] ? C(1) : C(0));
+                set |= out != 0 ? 0 : bits[j];
+            }
+        }
+        return (set | everywhere_[l]) & among;
+    }
+
+    // Of light l and sphere j: the lanes k (bit kLane[k]) whose segment from the point
+    // at (fx, fy, fz)[k] = P - L from the light, of length d[k], may meet the sphere.
+    template <int N>
+    std::uint64_t lanes(std::size_t l, std::size_t j, const C* fx, const C* fy, const C* fz, const C* d,
+                        const std::uint64_t (&lane_bit)[N]) const {
+        if ((everywhere_[l] >> j) & 1U) return ~std::uint64_t(0);
+        const std::size_t at = l * stride_ + j;
+        const C ux = ux_[at], uy = uy_[at], uz = uz_[at];
+        const C least = cos_b_[at] - C(kMargin), near = near_[at];
+        std::uint64_t set = 0;
+        RT_VECTOR_LOOP
+        for (int k = 0; k < N; ++k) {
+            const C out = (fx[k] * ux + fy[k] * uy + fz[k] * uz < d[k] * least ? C(1) : C(0)) +
+                          (d[k] < near ? C(1) : C(0));
+            set |= out != 0 ? 0 : lane_bit[k];
+        }
+        return set;
+    }
+
+private:
+    static constexpr double kMargin = 1e-6;
+    static constexpr std::uint64_t bit(std::size_t j) { return std::uint64_t(1) << j; }
+    static constexpr std::uint64_t kBit[kMaxSpheres] = {
+        bit(0),  bit(1),  bit(2),  bit(3),  bit(4),  bit(5),  bit(6),  bit(7),  bit(8),  bit(9),  bit(10),
+        bit(11), bit(12), bit(13), bit(14), bit(15), bit(16), bit(17), bit(18), bit(19), bit(20), bit(21),
+        bit(22), bit(23), bit(24), bit(25), bit(26), bit(27), bit(28), bit(29), bit(30), bit(31), bit(32),
+        bit(33), bit(34), bit(35), bit(36), bit(37), bit(38), bit(39), bit(40), bit(41), bit(42), bit(43),
+        bit(44), bit(45), bit(46), bit(47), bit(48), bit(49), bit(50), bit(51), bit(52), bit(53), bit(54),
+        bit(55), bit(56), bit(57), bit(58), bit(59), bit(60), bit(61), bit(62), bit(63)};
+
+    std::size_t n_ = 0, stride_ = 0;                      // spheres, and per light a multiple of 8 of them
+    std::vector<C> ux_, uy_, uz_, cos_b_, sin_b_, near_;  // [light * stride_ + sphere]
+    std::vector<std::uint64_t> everywhere_;               // per light: spheres around it
+};
+
+}  // namespace rt
