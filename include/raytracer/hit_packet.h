@@ -39,6 +39,19 @@ inline constexpr int kPacket = 16;
 inline constexpr int kPacket = 8;
 #endif
 
+// The terms of one light for the lanes of a HitPacket (HitPacket::light()).
+template <typename Real>
+struct LightLanes {
+    static constexpr int N = kPacket;
+    Real tx[N], ty[N], tz[N];  // L - P
+    Real distance[N];          // |L - P|
+    Real lx[N], ly[N], lz[N];  // normalize(L - P)
+    Real n_dot_l[N];
+    // Lane sets, bit k for lane k (lanes from count on repeat the last ray).
+    std::uint64_t front = 0;  // N.L > 0
+    std::uint64_t lit = 0;    // in front and not in shadow: the light adds its terms
+};
+
 template <typename Real>
 struct HitPacket {
     static constexpr int N = kPacket;
@@ -53,13 +66,7 @@ struct HitPacket {
     Real self_c[N];                  // |o'.o' - 1| of the self-shadow test
     Real self_test[N];               // mask
     Real vx[N], vy[N], vz[N];        // normalize(-direction)
-    // Of the current light:
-    Real tx[N], ty[N], tz[N];  // L - P
-    Real distance[N];          // |L - P|
-    Real lx[N], ly[N], lz[N];  // normalize(L - P)
-    Real n_dot_l[N];
-    Real front[N], self_clear[N], lit[N];  // masks
-    Real r[N], g[N], b[N];                 // the colour
+    Real r[N], g[N], b[N];           // the colour
 
     // The rays; lanes from count on repeat the last ray (their results are not used).
     void load(int n, const Real* from_x, const Real* from_y, const Real* from_z, const Real* x, const Real* y,
@@ -117,10 +124,19 @@ struct HitPacket {
     }
 
     // shade(), per light: to_light = L - P; light_distance = length(to_light); l =
-    // to_light * (1 / light_distance); n_dot_l = dot(normal, l); front when n_dot_l > 0;
-    // self_clear as there. lit starts false. False when no pixel has the light in front.
-    bool light(const Vec3<Real>& position, Real self_slack) {
+    // to_light * (1 / light_distance); n_dot_l = dot(normal, l); front when n_dot_l > 0.
+    // lit starts empty. False when no pixel has the light in front.
+    bool light(const Vec3<Real>& position, LightLanes<Real>& l) const {
         using std::sqrt;
+        Real* const tx = l.tx;
+        Real* const ty = l.ty;
+        Real* const tz = l.tz;
+        Real* const distance = l.distance;
+        Real* const lx = l.lx;
+        Real* const ly = l.ly;
+        Real* const lz = l.lz;
+        Real* const n_dot_l = l.n_dot_l;
+        Real front[N];
         for (int k = 0; k < N; ++k) {
             const Real x = position.x - px[k], y = position.y - py[k], z = position.z - pz[k];
             const Real d = sqrt(x * x + y * y + z * z);
@@ -130,23 +146,38 @@ struct HitPacket {
             tx[k] = x, ty[k] = y, tz[k] = z, distance[k] = d, lx[k] = ux, ly[k] = uy, lz[k] = uz;
             n_dot_l[k] = cosine;
             front[k] = mask(cosine > 0);
-            self_clear[k] =
-                self_test[k] * mask(scaled_length[k] * d * (cosine - self_slack) > Real(2000) * self_c[k]);
-            lit[k] = 0;
         }
         // Lanes from count on repeat the last ray, so all N lanes can be asked (a fixed
         // vector loop instead of a scalar one over count).
-        return bits(front) != 0;
+        l.front = bits(front);
+        l.lit = 0;
+        return l.front != 0;
+    }
+
+    // shade()'s self_clear for light l: the lanes where the own ellipsoid cannot block
+    // the shadow ray (see there). Only asked where the own ellipsoid is a candidate.
+    std::uint64_t self_clear(const LightLanes<Real>& l, Real self_slack) const {
+        std::uint64_t set = 0;
+        RT_VECTOR_LOOP
+        for (int k = 0; k < N; ++k) {
+            const Real clear =
+                self_test[k] *
+                mask(scaled_length[k] * l.distance[k] * (l.n_dot_l[k] - self_slack) > Real(2000) * self_c[k]);
+            set |= clear != 0 ? kLaneBit[k] : 0;
+        }
+        return set;
     }
 
     // shade(): colour += (Ip Kd * n_dot_l) * O where lit.
-    void add_diffuse(const Vec3<Real>& diffuse, const Vec3<Real>& colour) {
+    void add_diffuse(const LightLanes<Real>& l, const Vec3<Real>& diffuse, const Vec3<Real>& colour) {
+        const Real* const n_dot_l = l.n_dot_l;
+        const std::uint64_t lit = l.lit;
         RT_VECTOR_LOOP
         for (int k = 0; k < N; ++k) {
             const Real dr = r[k] + (diffuse.x * n_dot_l[k]) * colour.x;
             const Real dg = g[k] + (diffuse.y * n_dot_l[k]) * colour.y;
             const Real db = b[k] + (diffuse.z * n_dot_l[k]) * colour.z;
-            const bool adds = lit[k] != 0;
+            const bool adds = (lit & kLaneBit[k]) != 0;
             r[k] = adds ? dr : r[k], g[k] = adds ? dg : g[k], b[k] = adds ? db : b[k];
         }
     }
@@ -154,9 +185,9 @@ struct HitPacket {
     // shade(): reflected = normal * (2 * n_dot_l) - l; r_dot_v = dot(reflected,
     // to_viewer); colour += Ip Ks * r_dot_v^n where lit and r_dot_v > 0, the power by
     // whole_power() (power.h), the same multiplications in each lane.
-    void specular_whole(const Vec3<Real>& specular, std::int32_t exponent) {
+    void specular_whole(const LightLanes<Real>& l, const Vec3<Real>& specular, std::int32_t exponent) {
         Real r_dot_v[N], result[N], base[N];
-        reflect(r_dot_v);
+        reflect(l, r_dot_v);
         RT_VECTOR_LOOP
         for (int k = 0; k < N; ++k) result[k] = 1, base[k] = r_dot_v[k];
         for (std::int32_t bits = exponent; bits != 0; bits >>= 1) {
@@ -167,17 +198,17 @@ struct HitPacket {
             RT_VECTOR_LOOP
             for (Real& x : base) x *= x;
         }
-        add_specular(specular, r_dot_v, result);
+        add_specular(l.lit, specular, r_dot_v, result);
     }
 
     // The same with std::pow for an exponent that is not a whole number.
-    void specular_pow(const Vec3<Real>& specular, Real exponent) {
+    void specular_pow(const LightLanes<Real>& l, const Vec3<Real>& specular, Real exponent) {
         using std::pow;
         Real r_dot_v[N], result[N];
-        reflect(r_dot_v);
+        reflect(l, r_dot_v);
         for (int k = 0; k < N; ++k)
-            result[k] = lit[k] != 0 && r_dot_v[k] > 0 ? pow(r_dot_v[k], exponent) : Real(0);
-        add_specular(specular, r_dot_v, result);
+            result[k] = (l.lit & kLaneBit[k]) != 0 && r_dot_v[k] > 0 ? pow(r_dot_v[k], exponent) : Real(0);
+        add_specular(l.lit, specular, r_dot_v, result);
     }
 
     // reflection(): mirrored = direction - normal * (2 * dot(normal, direction)).
@@ -202,11 +233,6 @@ struct HitPacket {
         for (int k = 0; k < N; ++k) set |= mask[k] != 0 ? kLaneBit[k] : 0;
         return set;
     }
-    // lit = 1 in the lanes of the set, else 0.
-    void light_lanes(std::uint64_t set) {
-        RT_VECTOR_LOOP
-        for (int k = 0; k < N; ++k) lit[k] = (set & kLaneBit[k]) != 0 ? Real(1) : Real(0);
-    }
 
     // shade(): colour += seen * kr, for lane k.
     void add(int k, const Vec3<Real>& term) { r[k] += term.x, g[k] += term.y, b[k] += term.z; }
@@ -214,7 +240,11 @@ struct HitPacket {
 private:
     static Real mask(bool b) { return b ? Real(1) : Real(0); }
 
-    void reflect(Real* r_dot_v) const {
+    void reflect(const LightLanes<Real>& l, Real* r_dot_v) const {
+        const Real* const n_dot_l = l.n_dot_l;
+        const Real* const lx = l.lx;
+        const Real* const ly = l.ly;
+        const Real* const lz = l.lz;
         RT_VECTOR_LOOP
         for (int k = 0; k < N; ++k) {
             const Real twice = 2 * n_dot_l[k];
@@ -223,10 +253,11 @@ private:
         }
     }
 
-    void add_specular(const Vec3<Real>& specular, const Real* r_dot_v, const Real* power) {
+    void add_specular(std::uint64_t lit, const Vec3<Real>& specular, const Real* r_dot_v, const Real* power) {
         RT_VECTOR_LOOP
         for (int k = 0; k < N; ++k) {
-            const bool adds = lit[k] * mask(r_dot_v[k] > 0) != 0;  // no &&: it would branch
+            const bool adds =
+                mask((lit & kLaneBit[k]) != 0) * mask(r_dot_v[k] > 0) != 0;  // no &&: it would branch
             const Real sr = r[k] + specular.x * power[k];
             const Real sg = g[k] + specular.y * power[k];
             const Real sb = b[k] + specular.z * power[k];

@@ -17,6 +17,7 @@
 #include "raytracer/hit_packet.h"
 #include "raytracer/image.h"
 #include "raytracer/intersect_lanes.h"
+#include "raytracer/light_cones.h"
 #include "raytracer/pair_blockers.h"
 #include "raytracer/power.h"
 #include "raytracer/scene.h"
@@ -115,12 +116,14 @@ public:
         // cells hit_colours() does not look up).
         packet_shadows_ = std::is_same_v<C, Real> && use_grids_ && prefilter_.enabled() &&
                           ellipsoids_.size() <= DirectionGrid<C>::kMaxBitsEllipsoids &&
-                          ellipsoids_.size() <= PairBlockers<Real>::kMaxEllipsoids;
+                          ellipsoids_.size() <= PairBlockers<Real>::kMaxEllipsoids &&
+                          ellipsoids_.size() <= LightCones<C>::kMaxSpheres;
         if (packet_shadows_) {
             std::vector<BoundingSphere<C>> spheres;
             for (std::size_t j = 0; j < bounds_.size(); ++j) spheres.push_back(bounds_.sphere(j));
             std::vector<Vec3<C>> positions;
             for (const PointLight<Real>& l : lights_) positions.push_back(Vec3<C>::from(l.position));
+            light_cones_ = LightCones<C>(spheres, positions);
             pair_blockers_ = PairBlockers<Real>(
                 spheres, ellipsoids_, positions,
                 [&](std::size_t l, std::size_t j) { return enclosures_.light_within(l, j); });
@@ -475,8 +478,11 @@ private:
             // pair_blockers_'s sets apply (hit points lie on the ellipsoid: always, but
             // checked, as the sets' argument needs it).
             bool in_sphere = false;
+            // A ball around the points, for LightCones::packet().
+            typename LightCones<C>::Ball ball;
             if constexpr (std::is_same_v<C, Real>) {
                 if (packet_shadows_) {
+                    ball = LightCones<C>::template ball<kPacket>(p.px, p.py, p.pz);
                     const BoundingSphere<C> b = bounds_.sphere(i);
                     const C radius2 = b.radius * b.radius;
                     std::uint64_t outside = 0;  // NaN points count as outside
@@ -491,46 +497,74 @@ private:
                     self_within = enclosures_.template points_within<kPacket>(p.px, p.py, p.pz, i,
                                                                               HitPacket<Real>::kLaneBit);
             }
-            for (std::size_t li = 0; li < lights_.size(); ++li) {
-                if (!p.light(lights_[li].position, kSelfSlack)) continue;  // behind every ray's point
-                // The lanes' cells in the light buffer at once: point - light = -(L - P)
-                // exactly, so these are the cells in_shadow() would find (in double or
-                // wider; float's buffers are looked up in double from the point).
-                std::int32_t cells[kPacket];
-                for (std::int32_t& c : cells) c = -1;
-                if constexpr (std::is_same_v<C, Real>) {
-                    if (use_grids_ && !packet_shadows_) {
-                        Real fx[kPacket], fy[kPacket], fz[kPacket];
-                        for (int k = 0; k < kPacket; ++k)
-                            fx[k] = -p.tx[k], fy[k] = -p.ty[k], fz[k] = -p.tz[k];
-                        light_grids_[li].template cells<kPacket>(fx, fy, fz, cells);
-                    }
-                }
-                bool tested = false;
-                bool any_lit = true;
+            // The lights in batches: first each light's terms (independent chains of
+            // square roots and divisions, which overlap), then the shadow rays, then the
+            // sums in the order of the lights.
+            constexpr std::size_t kBatch = 4;
+            LightLanes<Real> batch[kBatch];
+            bool lit_any[kBatch];
+            for (std::size_t first = 0; first < lights_.size(); first += kBatch) {
+                const std::size_t size = std::min(kBatch, lights_.size() - first);
+                for (std::size_t b = 0; b < size; ++b)  // false: behind every ray's point
+                    lit_any[b] = p.light(lights_[first + b].position, batch[b]);
+                // Per light, the ellipsoids that some segment from the packet's ball to it
+                // may meet (also independent chains).
+                std::uint64_t may_block[kBatch] = {};
                 if constexpr (std::is_same_v<C, Real>) {
                     if (packet_shadows_)
-                        any_lit =
-                            shadow_lanes(p, i, li, in_sphere ? pair_blockers_.set(i, li) : ~std::uint64_t(0),
-                                         self_within, scratch) != 0,
-                        tested = true;
+                        for (std::size_t b = 0; b < size; ++b) {
+                            const std::size_t li = first + b;
+                            if (lit_any[b])
+                                may_block[b] = light_cones_.packet(
+                                    li, lights_[li].position, ball,
+                                    in_sphere ? pair_blockers_.set(i, li) : ~std::uint64_t(0));
+                        }
                 }
-                for (int k = 0; k < count && !tested; ++k) {
-                    if (p.front[k] == 0) continue;
-                    const V point{p.px[k], p.py[k], p.pz[k]}, to_light{p.tx[k], p.ty[k], p.tz[k]};
-                    const bool shadowed =
-                        in_shadow(point, to_light, li, scratch,
-                                  p.self_clear[k] != 0 ? i : TraceScratch<Real>::kNone, cells[k]);
-                    p.lit[k] = shadowed ? Real(0) : Real(1);
+                for (std::size_t b = 0; b < size; ++b) {
+                    if (!lit_any[b]) continue;
+                    const std::size_t li = first + b;
+                    LightLanes<Real>& l = batch[b];
+                    if constexpr (std::is_same_v<C, Real>) {
+                        if (packet_shadows_) {
+                            lit_any[b] = shadow_lanes(p, l, i, li, may_block[b], self_within, scratch) != 0;
+                            continue;
+                        }
+                    }
+                    // The lanes' cells in the light buffer at once: point - light = -(L - P)
+                    // exactly, so these are the cells in_shadow() would find (in double or
+                    // wider; float's buffers are looked up in double from the point).
+                    std::int32_t cells[kPacket];
+                    for (std::int32_t& c : cells) c = -1;
+                    if constexpr (std::is_same_v<C, Real>) {
+                        if (use_grids_) {
+                            Real fx[kPacket], fy[kPacket], fz[kPacket];
+                            for (int k = 0; k < kPacket; ++k)
+                                fx[k] = -l.tx[k], fy[k] = -l.ty[k], fz[k] = -l.tz[k];
+                            light_grids_[li].template cells<kPacket>(fx, fy, fz, cells);
+                        }
+                    }
+                    const std::uint64_t self_clear = p.self_clear(l, kSelfSlack);
+                    for (int k = 0; k < count; ++k) {
+                        if ((l.front & HitPacket<Real>::kLaneBit[k]) == 0) continue;
+                        const V point{p.px[k], p.py[k], p.pz[k]}, to_light{l.tx[k], l.ty[k], l.tz[k]};
+                        const bool shadowed = in_shadow(
+                            point, to_light, li, scratch,
+                            (self_clear & HitPacket<Real>::kLaneBit[k]) != 0 ? i : TraceScratch<Real>::kNone,
+                            cells[k]);
+                        if (!shadowed) l.lit |= HitPacket<Real>::kLaneBit[k];
+                    }
                 }
-                // No lane lit: the sums below would keep every lane's colour (selects).
-                if (!any_lit) continue;
-                p.add_diffuse(terms[li].diffuse, e.colour);
-                if (surface.no_specular) continue;
-                if (surface.exponent >= 0) {
-                    p.specular_whole(terms[li].specular, surface.exponent);
-                } else {
-                    p.specular_pow(terms[li].specular, e.shininess);
+                for (std::size_t b = 0; b < size; ++b) {
+                    // No lane lit: the sums would keep every lane's colour (selects).
+                    if (!lit_any[b]) continue;
+                    const std::size_t li = first + b;
+                    p.add_diffuse(batch[b], terms[li].diffuse, e.colour);
+                    if (surface.no_specular) continue;
+                    if (surface.exponent >= 0) {
+                        p.specular_whole(batch[b], terms[li].specular, surface.exponent);
+                    } else {
+                        p.specular_pow(batch[b], terms[li].specular, e.shininess);
+                    }
                 }
             }
         }
@@ -538,71 +572,69 @@ private:
         for (int k = 0; k < count; ++k) colours[k] = {p.r[k], p.g[k], p.b[k]};
     }
 
-    // in_shadow() for the lanes of a packet with light li in front (p.front), whose
-    // cells in the light's buffer are cells[k]; p.lit[k] = 1 where not shadowed. Used
-    // where packet_shadows_ holds.
+    // in_shadow() for the lanes of a packet with light li in front (l.front); sets l.lit
+    // to the lanes not shadowed and returns them. Used where packet_shadows_ holds.
     //
     // WHY: in_shadow() tries the ellipsoids of the lane's cell one lane at a time, each
     // with decide()'s branches. Here each candidate ellipsoid is tried on all lanes at
     // once with decide_lanes() (vector instructions), and intersect() runs only for the
     // rare lanes it is unsure about. A lane is shadowed when SOME ellipsoid blocks its
     // segment, and each test gives intersect()'s exact answer, so the order of the tries
-    // does not matter; a lane is only tried against the ellipsoids in_shadow() could
-    // try (its cell's list, less the self ellipsoid where self_clear and those that
-    // enclose light and point), so each lane gets in_shadow()'s boolean: the same bytes.
+    // does not matter; a lane is left untried only for ellipsoids that cannot block it
+    // (outside its segment's cone, LightCones::lanes(), or ruled out for the whole
+    // packet, below; the self ellipsoid where self_clear; those that enclose light and
+    // point), so each lane gets the unculled renderer's boolean: the same bytes.
+    // may_block: the ellipsoids that can block some lane at all (PairBlockers, then
+    // LightCones::packet() for the packet's ball).
     // self_within: the lanes whose points Enclosures::points_within() ellipsoid self.
-    // Returns the lit lanes as bits.
-    // may_block: the ellipsoids that can block some lane at all (PairBlockers).
-    std::uint64_t shadow_lanes(HitPacket<Real>& p, std::uint32_t self, std::size_t li,
-                               std::uint64_t may_block, std::uint64_t self_within,
+    std::uint64_t shadow_lanes(const HitPacket<Real>& p, LightLanes<Real>& l, std::uint32_t self,
+                               std::size_t li, std::uint64_t may_block, std::uint64_t self_within,
                                TraceScratch<Real>& scratch) const {
-        const DirectionGrid<C>& grid = light_grids_[li];
         constexpr int N = kPacket;
         using Bits = std::uint64_t;  // bit k for lane k
         // Selects of these constants rather than shifts by k: GCC then vectorises the
         // loops below (see HitPacket::bits()).
         constexpr const Bits(&kLane)[N] = HitPacket<Real>::kLaneBit;
-        // Which lanes have the light in front and which cannot be blocked by themselves;
-        // per lane, its cell's list as bits. Lanes from p.count on repeat the last ray:
-        // their lists add nothing, and they are never waiting.
-        const Bits front = HitPacket<Real>::bits(p.front) & ((Bits(1) << p.count) - 1);
-        const Bits self_clear = HitPacket<Real>::bits(p.self_clear);
-        // The own ellipsoid cannot block the lanes where self_clear holds, nor, where it
-        // encloses the light, those within it (contains_segments(), computed once).
-        const Bits self_free = self_clear | (enclosures_.light_within(li, self) ? self_within : 0);
+        // Which lanes have the light in front. Lanes from p.count on repeat the last ray:
+        // they are never waiting.
+        const Bits front = l.front & ((Bits(1) << p.count) - 1);
+        // The own ellipsoid cannot block the lanes where it encloses the light and the
+        // point (contains_segments(), computed once), nor those where self_clear holds
+        // (computed only where that matters).
+        Bits self_free = enclosures_.light_within(li, self) ? self_within : 0;
+        if (((may_block >> self) & 1U) && (front & ~self_free) != 0) self_free |= p.self_clear(l, kSelfSlack);
         if ((front & ~self_free) == 0) may_block &= ~(Bits(1) << self);
-        if (may_block == 0) {  // no ellipsoid can block any lane: no cells needed
-            p.light_lanes(front);
+        Bits candidates = may_block;
+        if (candidates == 0) {  // no ellipsoid can block any lane
+            l.lit = front;
             return front;
         }
-        // The lanes' cells in the light buffer: point - light = -(L - P) exactly, so
-        // these are the cells in_shadow() would find; per lane, its cell's list as bits.
-        std::int32_t cells[N];
-        {
-            Real fx[N], fy[N], fz[N];
-            for (int k = 0; k < N; ++k) fx[k] = -p.tx[k], fy[k] = -p.ty[k], fz[k] = -p.tz[k];
-            grid.template cells<N>(fx, fy, fz, cells);
-        }
-        Bits listed[N];
-        Bits candidates = 0;
-        for (int k = 0; k < N; ++k) {
-            listed[k] = (front & kLane[k]) != 0 ? grid.cell_bits(cells[k]) : 0;
-            candidates |= listed[k];
-        }
-        candidates &= may_block;
+        // Per lane, point - light = -(L - P) exactly.
+        Real fx[N], fy[N], fz[N];
+        for (int k = 0; k < N; ++k) fx[k] = -l.tx[k], fy[k] = -l.ty[k], fz[k] = -l.tz[k];
+        // Per candidate j, the lanes whose segment may meet it (all first: independent
+        // vector tests, which overlap).
+        Bits meets[LightCones<C>::kMaxSpheres];
+        Bits reached = 0;
+        Bits rest = candidates;
+        for (std::uint32_t j = 0; rest != 0; ++j, rest >>= 1)
+            if (rest & 1U)
+                reached |= meets[j] = light_cones_.template lanes<N>(li, j, fx, fy, fz, l.distance, kLane);
         Bits waiting = front;  // lanes not yet known to be shadowed
-        // Ellipsoid j against the waiting lanes that list it; clears their bits when blocked.
+        if ((reached & front) == 0) {
+            l.lit = front;
+            return front;
+        }
+        // Ellipsoid j against the waiting lanes whose segment may meet it; clears their
+        // bits when blocked.
         auto try_ellipsoid = [&](std::uint32_t j) {
-            Bits lanes = 0;
-            RT_VECTOR_LOOP
-            for (int k = 0; k < N; ++k) lanes |= ((listed[k] >> j) & 1U) != 0 ? kLane[k] : 0;
-            lanes &= waiting;
+            Bits lanes = waiting & meets[j];
             if (j == self)
                 lanes &= ~self_free;
             else if (lanes != 0)
                 lanes &= ~enclosures_.template contains_segments<N>(p.px, p.py, p.pz, li, j, kLane);
             if (lanes == 0) return;
-            const auto answer = prefilter_.template decide_lanes<N>(p.px, p.py, p.pz, p.tx, p.ty, p.tz, j);
+            const auto answer = prefilter_.template decide_lanes<N>(p.px, p.py, p.pz, l.tx, l.ty, l.tz, j);
             Bits blocked = 0, unsure = 0;
             RT_VECTOR_LOOP
             for (int k = 0; k < N; ++k) {
@@ -612,7 +644,7 @@ private:
             blocked &= lanes, unsure &= lanes;
             for (int k = 0; unsure != 0; ++k, unsure >>= 1)  // rare: intersect() decides
                 if ((unsure & 1U) &&
-                    blocks(ellipsoids_[j], V{p.px[k], p.py[k], p.pz[k]}, V{p.tx[k], p.ty[k], p.tz[k]}))
+                    blocks(ellipsoids_[j], V{p.px[k], p.py[k], p.pz[k]}, V{l.tx[k], l.ty[k], l.tz[k]}))
                     blocked |= kLane[k];
             if (blocked == 0) return;
             waiting &= ~blocked;
@@ -628,7 +660,7 @@ private:
         for (std::uint32_t j = 0; candidates != 0 && waiting != 0; ++j, candidates >>= 1)
             if (candidates & 1U) try_ellipsoid(j);
         // Lit: the light in front and no blocker found.
-        p.light_lanes(waiting);
+        l.lit = waiting;
         return waiting;
     }
 
@@ -776,6 +808,7 @@ private:
     Enclosures<Real> enclosures_;
     ShadowPrefilter<Real> prefilter_;
     PairBlockers<Real> pair_blockers_;  // where packet_shadows_
+    LightCones<C> light_cones_;         // where packet_shadows_
     bool accelerate_ = true;
     std::vector<DirectionGrid<C>> light_grids_;
     V ambient_;
