@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "check.h"
+#include "random_checks.h"
 #include "raytracer/direction_grid.h"
 
 namespace {
@@ -150,10 +151,6 @@ TEST(every_sphere_a_ray_meets_is_in_its_cells_list) {
 }
 
 namespace both_paths {
-
-double uniform(std::mt19937& g, double lo, double hi) {
-    return lo + (hi - lo) * (static_cast<double>(g()) / 4294967296.0);
-}
 
 template <typename C>
 long long differing_cells(unsigned seed, long long& listed) {

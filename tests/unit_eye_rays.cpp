@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "check.h"
+#include "random_checks.h"
 #include "raytracer/ellipsoid.h"
 #include "raytracer/eye_rays.h"
 #include "raytracer/tracer.h"
@@ -16,10 +17,6 @@
 namespace {
 
 // Uniform in [lo, hi) from the raw generator output (the same numbers everywhere).
-double uniform(std::mt19937& g, double lo, double hi) {
-    return lo + (hi - lo) * (static_cast<double>(g()) / 4294967296.0);
-}
-
 struct Frustum {
     double left, right, bottom, top, near_plane;
     int columns, rows;

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "check.h"
+#include "random_checks.h"
 #include "raytracer/ellipsoid.h"
 #include "raytracer/intersect_lanes.h"
 #include "raytracer/scene.h"
@@ -22,10 +23,6 @@
 namespace {
 
 constexpr int N = rt::kPacket;
-
-double uniform(std::mt19937& g, double lo, double hi) {
-    return lo + (hi - lo) * (static_cast<double>(g()) / 4294967296.0);
-}
 
 // Equal values with equal signs (0 and -0 differ), or both NaN.
 template <typename Real>

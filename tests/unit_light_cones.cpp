@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "check.h"
+#include "random_checks.h"
 #include "raytracer/ellipsoid.h"
 #include "raytracer/light_cones.h"
 #include "raytracer/sphere_bounds.h"
@@ -21,15 +22,6 @@ namespace {
 
 constexpr int N = 8;
 constexpr std::uint64_t kLane[N] = {1, 2, 4, 8, 16, 32, 64, 128};
-
-double uniform(std::mt19937& g, double lo, double hi) {
-    return lo + (hi - lo) * (static_cast<double>(g()) / 4294967296.0);
-}
-
-bool blocks(const rt::Ellipsoid<double>& e, const rt::Vec3<double>& point, const rt::Vec3<double>& to_light) {
-    const rt::Roots<double> r = rt::intersect(e, point, to_light);
-    return r.hit && ((r.near > 0.001 && r.near < 1) || (r.far > 0.001 && r.far < 1));
-}
 
 }  // namespace
 
@@ -65,21 +57,23 @@ TEST(light_cones_rule_out_only_ellipsoids_that_cannot_block) {
             const double spread = packet % 3 == 0 ? 0.05 : 1.0;
             const rt::Vec3<double> around{uniform(g, -1, 1), uniform(g, -1, 1), uniform(g, -1, 1)};
             for (int k = 0; k < N; ++k) {
-                rt::Vec3<double> u = around + rt::Vec3<double>{uniform(g, -1, 1), uniform(g, -1, 1),
-                                                               uniform(g, -1, 1)} *
-                                                  spread;
+                rt::Vec3<double> u =
+                    around +
+                    rt::Vec3<double>{uniform(g, -1, 1), uniform(g, -1, 1), uniform(g, -1, 1)} * spread;
                 u = u * (1 / std::sqrt(dot(u, u)));
                 const rt::Ellipsoid<double>& e = ellipsoids[packet % 3 == 1 ? g() % ellipsoids.size() : on];
                 const rt::Vec3<double> point =
-                    packet % 5 == 4 ? rt::Vec3<double>{uniform(g, -8, 8), uniform(g, -8, 8), uniform(g, -14, 3)}
-                                    : e.centre + u * e.scale;
+                    packet % 5 == 4
+                        ? rt::Vec3<double>{uniform(g, -8, 8), uniform(g, -8, 8), uniform(g, -14, 3)}
+                        : e.centre + u * e.scale;
                 px[k] = point.x, py[k] = point.y, pz[k] = point.z;
             }
             const auto ball = rt::LightCones<double>::ball<N>(px, py, pz);
             CHECK(ball.usable);
             for (std::size_t l = 0; l < lights.size(); ++l) {
                 for (int k = 0; k < N; ++k) {
-                    fx[k] = -(lights[l].x - px[k]), fy[k] = -(lights[l].y - py[k]), fz[k] = -(lights[l].z - pz[k]);
+                    fx[k] = -(lights[l].x - px[k]), fy[k] = -(lights[l].y - py[k]),
+                    fz[k] = -(lights[l].z - pz[k]);
                     d[k] = std::sqrt(fx[k] * fx[k] + fy[k] * fy[k] + fz[k] * fz[k]);
                 }
                 const std::uint64_t all = (std::uint64_t(1) << ellipsoids.size()) - 1;

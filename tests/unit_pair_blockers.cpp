@@ -10,23 +10,11 @@
 #include <vector>
 
 #include "check.h"
+#include "random_checks.h"
 #include "raytracer/ellipsoid.h"
 #include "raytracer/enclosures.h"
 #include "raytracer/pair_blockers.h"
 #include "raytracer/sphere_bounds.h"
-
-namespace {
-
-double uniform(std::mt19937& g, double lo, double hi) {
-    return lo + (hi - lo) * (static_cast<double>(g()) / 4294967296.0);
-}
-
-bool blocks(const rt::Ellipsoid<double>& e, const rt::Vec3<double>& point, const rt::Vec3<double>& to_light) {
-    const rt::Roots<double> r = rt::intersect(e, point, to_light);
-    return r.hit && ((r.near > 0.001 && r.near < 1) || (r.far > 0.001 && r.far < 1));
-}
-
-}  // namespace
 
 TEST(pair_blockers_leave_out_only_ellipsoids_that_cannot_block) {
     long long wrong = 0, left_out = 0, pairs = 0, blocked = 0;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "check.h"
+#include "random_checks.h"
 #include "raytracer/ellipsoid.h"
 #include "raytracer/enclosures.h"
 #include "raytracer/hit_packet.h"
@@ -19,10 +20,6 @@
 namespace {
 
 constexpr int N = rt::kPacket;
-
-double uniform(std::mt19937& g, double lo, double hi) {
-    return lo + (hi - lo) * (static_cast<double>(g()) / 4294967296.0);
-}
 
 double pick(std::mt19937& g, const std::vector<double>& values) { return values[g() % values.size()]; }
 

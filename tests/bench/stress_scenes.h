@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "random_checks.h"
 #include "raytracer/parser.h"
 #include "raytracer/scene.h"
 
@@ -37,12 +38,6 @@ inline std::vector<std::pair<std::string, rt::Scene>> file_scenes(int columns, i
         scenes.emplace_back(f.filename().string(), s);
     }
     return scenes;
-}
-
-// Uniform in [lo, hi) from the raw generator output: the same numbers on every
-// platform (std::uniform_real_distribution is not specified bit for bit).
-inline double uniform(std::mt19937& g, double lo, double hi) {
-    return lo + (hi - lo) * (static_cast<double>(g()) / 4294967296.0);
 }
 
 inline rt::Scene random_scene(unsigned seed) {
