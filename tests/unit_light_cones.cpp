@@ -116,6 +116,10 @@ TEST(light_cones_rule_out_nothing_for_a_ball_with_a_nan) {
     const auto ball = rt::LightCones<double>::ball<N>(px, py, pz);
     CHECK(!ball.usable);
     CHECK(cones.packet(0, lights[0], ball, 3) == 3);
+    CHECK(cones.packet(0, lights[0], ball, ~std::uint64_t(0)) == 3);  // only spheres there are
+    // A light inside the ball: nothing ruled out, but only spheres there are.
+    px[3] = 0;
+    CHECK(cones.packet(0, {5, -10, 10}, rt::LightCones<double>::ball<N>(px, py, pz), ~std::uint64_t(0)) == 3);
     // A NaN lane may meet every sphere.
     double fx[N], fy[N], fz[N], d[N];
     for (int k = 0; k < N; ++k) fx[k] = 0, fy[k] = 1, fz[k] = 0, d[k] = 1;  // away from both

@@ -55,6 +55,7 @@ public:
         : n_(spheres.size()), stride_((spheres.size() + 7) / 8 * 8) {
         using std::sqrt;
         if (n_ > kMaxSpheres) return;
+        all_ = n_ == kMaxSpheres ? ~std::uint64_t(0) : (std::uint64_t(1) << n_) - 1;
         const std::size_t size = stride_ * lights.size();
         // Padding spheres are never met: no direction has cosine 2 with a unit vector.
         ux_.assign(size, 0), uy_.assign(size, 0), uz_.assign(size, 0);
@@ -105,6 +106,7 @@ public:
     // to the light may meet.
     std::uint64_t packet(std::size_t l, const Vec3<C>& light, const Ball& b, std::uint64_t among) const {
         using std::sqrt;
+        among &= all_;  // only the spheres there are
         if (among == 0 || !b.usable) return among;
         const C wx = b.x - light.x, wy = b.y - light.y, wz = b.z - light.z;
         const C dist2 = wx * wx + wy * wy + wz * wz;
@@ -164,6 +166,7 @@ private:
         bit(55), bit(56), bit(57), bit(58), bit(59), bit(60), bit(61), bit(62), bit(63)};
 
     std::size_t n_ = 0, stride_ = 0;                      // spheres, and per light a multiple of 8 of them
+    std::uint64_t all_ = 0;                               // a bit for each sphere
     std::vector<C> ux_, uy_, uz_, cos_b_, sin_b_, near_;  // [light * stride_ + sphere]
     std::vector<std::uint64_t> everywhere_;               // per light: spheres around it
 };
