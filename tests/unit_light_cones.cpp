@@ -30,21 +30,11 @@ TEST(light_cones_rule_out_only_ellipsoids_that_cannot_block) {
               packets_out = 0, blocked = 0;
     for (unsigned seed = 1; seed <= 60; ++seed) {
         std::mt19937 g(seed);
-        std::vector<rt::Ellipsoid<double>> ellipsoids;
-        const int n = 3 + static_cast<int>(g() % 14);
-        for (int i = 0; i < n; ++i) {
-            rt::SphereSpec s{};
-            s.centre = {uniform(g, -5, 5), uniform(g, -5, 5), uniform(g, -10, 0)};
-            s.scale = {uniform(g, 0.1, 2), uniform(g, 0.1, 2), uniform(g, 0.1, 2)};
-            if (i % 3 == 1) s.scale.y = -s.scale.y;
-            if (i % 7 == 3) s.scale.z = 0.001;
-            if (i == 0) s.centre = {0, 0, -5}, s.scale = {14, 10, 16};  // a room
-            ellipsoids.push_back(rt::make_ellipsoid<double>(s));
-        }
+        const std::vector<rt::Ellipsoid<double>> ellipsoids = random_room_scene(g);
         std::vector<rt::Vec3<double>> lights(4);
         for (rt::Vec3<double>& light : lights)
             light = {uniform(g, -6, 6), uniform(g, -6, 6), uniform(g, -12, 2)};
-        lights[3] = ellipsoids[1 + g() % (n - 1)].centre;  // inside an ellipsoid
+        lights[3] = ellipsoids[1 + g() % (ellipsoids.size() - 1)].centre;  // inside an ellipsoid
         const rt::SphereBounds<double> bounds(ellipsoids, lights);
         std::vector<rt::BoundingSphere<double>> spheres;
         for (std::size_t i = 0; i < bounds.size(); ++i) spheres.push_back(bounds.sphere(i));

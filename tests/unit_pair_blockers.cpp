@@ -20,18 +20,10 @@ TEST(pair_blockers_leave_out_only_ellipsoids_that_cannot_block) {
     long long wrong = 0, left_out = 0, pairs = 0, blocked = 0;
     for (unsigned seed = 1; seed <= 40; ++seed) {
         std::mt19937 g(seed);
-        std::vector<rt::Ellipsoid<double>> ellipsoids;
-        const int n = 3 + static_cast<int>(g() % 14);
-        for (int i = 0; i < n; ++i) {
-            rt::SphereSpec s{};
-            s.centre = {uniform(g, -5, 5), uniform(g, -5, 5), uniform(g, -10, 0)};
-            s.scale = {uniform(g, 0.1, 2), uniform(g, 0.1, 2), uniform(g, 0.1, 2)};
-            if (i % 3 == 1) s.scale.y = -s.scale.y;
-            if (i % 7 == 3) s.scale.z = 0.001;
-            if (i == 0) s.centre = {0, 0, -5}, s.scale = {14, 10, 16};    // a room
-            if (i == 1) s.centre = {13.5, 0, -5}, s.scale = {1.5, 1, 1};  // through its wall
-            ellipsoids.push_back(rt::make_ellipsoid<double>(s));
-        }
+        std::vector<rt::Ellipsoid<double>> ellipsoids = random_room_scene(g);
+        rt::SphereSpec wall{};  // an ellipsoid through the room's wall
+        wall.centre = {13.5, 0, -5}, wall.scale = {1.5, 1, 1};
+        ellipsoids[1] = rt::make_ellipsoid<double>(wall);
         std::vector<rt::Vec3<double>> lights(4);
         for (rt::Vec3<double>& light : lights)
             light = {uniform(g, -6, 6), uniform(g, -6, 6), uniform(g, -12, 2)};
