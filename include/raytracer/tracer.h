@@ -222,8 +222,10 @@ public:
     void eye_hit_colours(std::uint32_t i, int count, const Real* dx, const Real* dy, const Real* dz,
                          const Real* t, const bool* inside, TraceScratch<Real>& scratch, V* colours) const {
         const Real camera[kPacket] = {};
-        hit_colours(i, count, camera, camera, camera, dx, dy, dz, t, inside, kMaxReflections, scratch,
-                    colours);
+        by_width(count, [&](auto width) {
+            hit_colours<decltype(width)::value>(i, count, camera, camera, camera, dx, dy, dz, t, inside,
+                                                kMaxReflections, scratch, colours);
+        });
     }
 
     // Per ellipsoid, the ellipsoid and the camera's terms in its unit space
@@ -276,10 +278,10 @@ public:
     // for all lanes at once (intersect_lanes()), in vector instructions. Each lane gets
     // the roots intersect() gives, for exactly the ellipsoids its own culling leaves,
     // taken in increasing order by closest()'s rule: the same hit, t and flag.
+    template <int N = kPacket>
     void nearest_hits(const Real* ox, const Real* oy, const Real* oz, const Real* dx, const Real* dy,
                       const Real* dz, Real min_t, TraceScratch<Real>& scratch, std::uint32_t* index, Real* t,
                       bool* inside) const {
-        constexpr int N = kPacket;
         std::uint32_t* lanes = scratch.lanes.data();
         bounds_.template candidate_lanes<N>(ox, oy, oz, dx, dy, dz, lanes);
         min_t *= Real(1) + Real(8) * scene_epsilon<Real>();  // as in closest()
@@ -293,8 +295,7 @@ public:
             Real hit[N], near[N], far[N], take[N], listed[N];
             intersect_lanes<N>(ellipsoids_[i], ox, oy, oz, dx, dy, dz, hit, near, far);
             RT_VECTOR_LOOP
-            for (int k = 0; k < N; ++k)
-                listed[k] = (set & HitPacket<Real>::kLaneBit[k]) != 0 ? Real(1) : Real(0);
+            for (int k = 0; k < N; ++k) listed[k] = (set & kLaneBits<N>.bit[k]) != 0 ? Real(1) : Real(0);
             // closest(): inside = !(near > min_t); t = inside ? far : near; taken when
             // t > min_t and nothing nearer was found. (Products of 0/1 masks rather than
             // && and bools, which keep GCC's loop scalar.)
@@ -358,6 +359,18 @@ public:
     }
 
 private:
+    // Calls shade(std::integral_constant<int, width>) with the narrowest packet width
+    // that holds count rays (see kNarrowestPacket).
+    template <typename Shade>
+    static void by_width(int count, Shade shade) {
+        if (count <= kNarrowestPacket)
+            shade(std::integral_constant<int, kNarrowestPacket>{});
+        else if (count <= kPacket / 2)
+            shade(std::integral_constant<int, kPacket / 2>{});
+        else
+            shade(std::integral_constant<int, kPacket>{});
+    }
+
     // Cells per cube-face side of the light buffers (direction_grid.h).
     static constexpr int kGridCells = 16;
     // The rounding allowance on N.L of the self-shadow test in shade().
@@ -452,6 +465,7 @@ private:
     // shadow rays are tested for all lanes at once where shadow_lanes() can, what the
     // mirrored rays hit is found for all lanes at once (nearest_hits()), and the mirrored
     // rays are shaded in packets again, grouped by the ellipsoid they hit.
+    template <int N>
     void hit_colours(std::uint32_t i, int count, const Real* ox, const Real* oy, const Real* oz,
                      const Real* dx, const Real* dy, const Real* dz, const Real* t, const bool* inside,
                      int reflections_left, TraceScratch<Real>& scratch, V* colours) const {
@@ -462,7 +476,7 @@ private:
             for (int k = 0; k < count; ++k) colours[k] = surface.ambient;
             return;
         }
-        HitPacket<Real> p;
+        HitPacket<Real, N> p;
         p.load(count, ox, oy, oz, dx, dy, dz, t, inside);
         p.start_colour(surface.ambient);
         p.surface(e.centre, e.scale_squared);
@@ -482,26 +496,26 @@ private:
             typename LightCones<C>::Ball ball;
             if constexpr (std::is_same_v<C, Real>) {
                 if (packet_shadows_) {
-                    ball = LightCones<C>::template ball<kPacket>(p.px, p.py, p.pz);
+                    ball = LightCones<C>::template ball<N>(p.px, p.py, p.pz);
                     const BoundingSphere<C> b = bounds_.sphere(i);
                     const C radius2 = b.radius * b.radius;
                     std::uint64_t outside = 0;  // NaN points count as outside
                     RT_VECTOR_LOOP
-                    for (int k = 0; k < kPacket; ++k) {
+                    for (int k = 0; k < N; ++k) {
                         const C x = p.px[k] - b.x, y = p.py[k] - b.y, z = p.pz[k] - b.z;
-                        outside |= x * x + y * y + z * z <= radius2 ? 0 : HitPacket<Real>::kLaneBit[k];
+                        outside |= x * x + y * y + z * z <= radius2 ? 0 : kLaneBits<N>.bit[k];
                     }
                     in_sphere = outside == 0;
                 }
                 if (packet_shadows_ && enclosures_.encloses_a_light(i))
-                    self_within = enclosures_.template points_within<kPacket>(p.px, p.py, p.pz, i,
-                                                                              HitPacket<Real>::kLaneBit);
+                    self_within =
+                        enclosures_.template points_within<N>(p.px, p.py, p.pz, i, kLaneBits<N>.bit);
             }
             // The lights in batches: first each light's terms (independent chains of
             // square roots and divisions, which overlap), then the shadow rays, then the
             // sums in the order of the lights.
             constexpr std::size_t kBatch = 4;
-            LightLanes<Real> batch[kBatch];
+            LightLanes<Real, N> batch[kBatch];
             bool lit_any[kBatch];
             for (std::size_t first = 0; first < lights_.size(); first += kBatch) {
                 const std::size_t size = std::min(kBatch, lights_.size() - first);
@@ -523,7 +537,7 @@ private:
                 for (std::size_t b = 0; b < size; ++b) {
                     if (!lit_any[b]) continue;
                     const std::size_t li = first + b;
-                    LightLanes<Real>& l = batch[b];
+                    LightLanes<Real, N>& l = batch[b];
                     if constexpr (std::is_same_v<C, Real>) {
                         if (packet_shadows_) {
                             lit_any[b] = shadow_lanes(p, l, i, li, may_block[b], self_within, scratch) != 0;
@@ -533,25 +547,24 @@ private:
                     // The lanes' cells in the light buffer at once: point - light = -(L - P)
                     // exactly, so these are the cells in_shadow() would find (in double or
                     // wider; float's buffers are looked up in double from the point).
-                    std::int32_t cells[kPacket];
+                    std::int32_t cells[N];
                     for (std::int32_t& c : cells) c = -1;
                     if constexpr (std::is_same_v<C, Real>) {
                         if (use_grids_) {
-                            Real fx[kPacket], fy[kPacket], fz[kPacket];
-                            for (int k = 0; k < kPacket; ++k)
-                                fx[k] = -l.tx[k], fy[k] = -l.ty[k], fz[k] = -l.tz[k];
-                            light_grids_[li].template cells<kPacket>(fx, fy, fz, cells);
+                            Real fx[N], fy[N], fz[N];
+                            for (int k = 0; k < N; ++k) fx[k] = -l.tx[k], fy[k] = -l.ty[k], fz[k] = -l.tz[k];
+                            light_grids_[li].template cells<N>(fx, fy, fz, cells);
                         }
                     }
                     const std::uint64_t self_clear = p.self_clear(l, kSelfSlack);
                     for (int k = 0; k < count; ++k) {
-                        if ((l.front & HitPacket<Real>::kLaneBit[k]) == 0) continue;
+                        if ((l.front & kLaneBits<N>.bit[k]) == 0) continue;
                         const V point{p.px[k], p.py[k], p.pz[k]}, to_light{l.tx[k], l.ty[k], l.tz[k]};
-                        const bool shadowed = in_shadow(
-                            point, to_light, li, scratch,
-                            (self_clear & HitPacket<Real>::kLaneBit[k]) != 0 ? i : TraceScratch<Real>::kNone,
-                            cells[k]);
-                        if (!shadowed) l.lit |= HitPacket<Real>::kLaneBit[k];
+                        const bool shadowed =
+                            in_shadow(point, to_light, li, scratch,
+                                      (self_clear & kLaneBits<N>.bit[k]) != 0 ? i : TraceScratch<Real>::kNone,
+                                      cells[k]);
+                        if (!shadowed) l.lit |= kLaneBits<N>.bit[k];
                     }
                 }
                 for (std::size_t b = 0; b < size; ++b) {
@@ -587,14 +600,14 @@ private:
     // may_block: the ellipsoids that can block some lane at all (PairBlockers, then
     // LightCones::packet() for the packet's ball).
     // self_within: the lanes whose points Enclosures::points_within() ellipsoid self.
-    std::uint64_t shadow_lanes(const HitPacket<Real>& p, LightLanes<Real>& l, std::uint32_t self,
+    template <int N>
+    std::uint64_t shadow_lanes(const HitPacket<Real, N>& p, LightLanes<Real, N>& l, std::uint32_t self,
                                std::size_t li, std::uint64_t may_block, std::uint64_t self_within,
                                TraceScratch<Real>& scratch) const {
-        constexpr int N = kPacket;
         using Bits = std::uint64_t;  // bit k for lane k
         // Selects of these constants rather than shifts by k: GCC then vectorises the
         // loops below (see HitPacket::bits()).
-        constexpr const Bits(&kLane)[N] = HitPacket<Real>::kLaneBit;
+        constexpr const Bits(&kLane)[N] = kLaneBits<N>.bit;
         // Which lanes have the light in front. Lanes from p.count on repeat the last ray:
         // they are never waiting.
         const Bits front = l.front & ((Bits(1) << p.count) - 1);
@@ -665,35 +678,55 @@ private:
     }
 
     // reflection() for the rays of a packet; adds seen * kr to each lane's colour.
-    void reflections(HitPacket<Real>& p, Real kr, int reflections_left, TraceScratch<Real>& scratch) const {
-        Real mx[kPacket], my[kPacket], mz[kPacket];
+    template <int N>
+    void reflections(HitPacket<Real, N>& p, Real kr, int reflections_left,
+                     TraceScratch<Real>& scratch) const {
+        Real mx[N], my[N], mz[N];
         p.mirror(mx, my, mz);
-        std::uint32_t next[kPacket];
-        Real next_t[kPacket];
-        bool next_inside[kPacket];
+        std::uint32_t next[N];
+        Real next_t[N];
+        bool next_inside[N];
         // What each mirrored ray hits (lanes from p.count on repeat the last ray). A
         // reflected ray that hits nothing returns black, unlike an eye ray.
-        nearest_hits(p.px, p.py, p.pz, mx, my, mz, Real(kReflectedRayMinT), scratch, next, next_t,
-                     next_inside);
-        V seen[kPacket] = {};
-        bool done[kPacket] = {};
-        for (int k = 0; k < p.count; ++k) {
-            if (done[k] || next[k] == TraceScratch<Real>::kNone) continue;
+        nearest_hits<N>(p.px, p.py, p.pz, mx, my, mz, Real(kReflectedRayMinT), scratch, next, next_t,
+                        next_inside);
+        V seen[N] = {};
+        using Bits = std::uint64_t;
+        constexpr const Bits(&kLane)[N] = kLaneBits<N>.bit;
+        const Bits counted = p.count == N ? ~Bits(0) : (Bits(1) << p.count) - 1;
+        Bits waiting = 0;  // the lanes whose mirrored rays hit something not yet shaded
+        RT_VECTOR_LOOP
+        for (int k = 0; k < N; ++k) waiting |= next[k] != TraceScratch<Real>::kNone ? kLane[k] : 0;
+        waiting &= counted;
+        for (int k = 0; waiting != 0; ++k) {
+            if ((waiting & kLane[k]) == 0) continue;
             // The lanes whose mirrored rays hit the same ellipsoid, as one packet.
-            int lane[kPacket], n = 0;
-            Real gox[kPacket], goy[kPacket], goz[kPacket], gdx[kPacket], gdy[kPacket], gdz[kPacket],
-                gt[kPacket];
-            bool gin[kPacket];
+            const std::uint32_t target = next[k];
+            Bits same = 0;
+            RT_VECTOR_LOOP
+            for (int j = 0; j < N; ++j) same |= next[j] == target ? kLane[j] : 0;
+            same &= waiting;
+            waiting &= ~same;
+            V group[N];
+            if (same == counted) {  // all of them (the usual case): the packet's own arrays
+                hit_colours<N>(target, p.count, p.px, p.py, p.pz, mx, my, mz, next_t, next_inside,
+                               reflections_left - 1, scratch, seen);
+                break;
+            }
+            int lane[N], n = 0;
+            Real gox[N], goy[N], goz[N], gdx[N], gdy[N], gdz[N], gt[N];
+            bool gin[N];
             for (int j = k; j < p.count; ++j) {
-                if (done[j] || next[j] != next[k]) continue;
-                done[j] = true, lane[n] = j;
+                if ((same & kLane[j]) == 0) continue;
+                lane[n] = j;
                 gox[n] = p.px[j], goy[n] = p.py[j], goz[n] = p.pz[j];
                 gdx[n] = mx[j], gdy[n] = my[j], gdz[n] = mz[j], gt[n] = next_t[j], gin[n] = next_inside[j];
                 ++n;
             }
-            V group[kPacket];
-            hit_colours(next[k], n, gox, goy, goz, gdx, gdy, gdz, gt, gin, reflections_left - 1, scratch,
-                        group);
+            by_width(n, [&](auto width) {
+                hit_colours<decltype(width)::value>(target, n, gox, goy, goz, gdx, gdy, gdz, gt, gin,
+                                                    reflections_left - 1, scratch, group);
+            });
             for (int j = 0; j < n; ++j) seen[lane[j]] = group[j];
         }
         for (int k = 0; k < p.count; ++k) p.add(k, seen[k] * kr);
