@@ -10,6 +10,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "raytracer/bit_scan.h"
 #include "raytracer/compiler.h"
 #include "raytracer/direction_grid.h"
 #include "raytracer/ellipsoid.h"
@@ -629,10 +630,11 @@ private:
         // vector tests, which overlap).
         Bits meets[LightCones<C>::kMaxSpheres];
         Bits reached = 0;
-        Bits rest = candidates;
-        for (std::uint32_t j = 0; rest != 0; ++j, rest >>= 1)
-            if (rest & 1U)
-                reached |= meets[j] = light_cones_.template lanes<N>(li, j, fx, fy, fz, l.distance, kLane);
+        for (Bits rest = candidates; rest != 0; rest &= rest - 1) {
+            const int j = lowest_bit(rest);
+            reached |= meets[j] =
+                light_cones_.template lanes<N>(li, std::size_t(j), fx, fy, fz, l.distance, kLane);
+        }
         Bits waiting = front;  // lanes not yet known to be shadowed
         if ((reached & front) == 0) {
             l.lit = front;
@@ -655,10 +657,11 @@ private:
                 unsure |= answer.unsure[k] != 0 ? kLane[k] : 0;
             }
             blocked &= lanes, unsure &= lanes;
-            for (int k = 0; unsure != 0; ++k, unsure >>= 1)  // rare: intersect() decides
-                if ((unsure & 1U) &&
-                    blocks(ellipsoids_[j], V{p.px[k], p.py[k], p.pz[k]}, V{l.tx[k], l.ty[k], l.tz[k]}))
+            for (; unsure != 0; unsure &= unsure - 1) {  // rare: intersect() decides
+                const int k = lowest_bit(unsure);
+                if (blocks(ellipsoids_[j], V{p.px[k], p.py[k], p.pz[k]}, V{l.tx[k], l.ty[k], l.tz[k]}))
                     blocked |= kLane[k];
+            }
             if (blocked == 0) return;
             waiting &= ~blocked;
             scratch.last_occluder[li] = j;
@@ -670,8 +673,8 @@ private:
             try_ellipsoid(last);
             candidates &= ~(Bits(1) << last);
         }
-        for (std::uint32_t j = 0; candidates != 0 && waiting != 0; ++j, candidates >>= 1)
-            if (candidates & 1U) try_ellipsoid(j);
+        for (; candidates != 0 && waiting != 0; candidates &= candidates - 1)
+            try_ellipsoid(static_cast<std::uint32_t>(lowest_bit(candidates)));
         // Lit: the light in front and no blocker found.
         l.lit = waiting;
         return waiting;
@@ -698,8 +701,8 @@ private:
         RT_VECTOR_LOOP
         for (int k = 0; k < N; ++k) waiting |= next[k] != TraceScratch<Real>::kNone ? kLane[k] : 0;
         waiting &= counted;
-        for (int k = 0; waiting != 0; ++k) {
-            if ((waiting & kLane[k]) == 0) continue;
+        while (waiting != 0) {
+            const int k = lowest_bit(waiting);
             // The lanes whose mirrored rays hit the same ellipsoid, as one packet.
             const std::uint32_t target = next[k];
             Bits same = 0;
@@ -716,8 +719,8 @@ private:
             int lane[N], n = 0;
             Real gox[N], goy[N], goz[N], gdx[N], gdy[N], gdz[N], gt[N];
             bool gin[N];
-            for (int j = k; j < p.count; ++j) {
-                if ((same & kLane[j]) == 0) continue;
+            for (Bits rest = same; rest != 0; rest &= rest - 1) {
+                const int j = lowest_bit(rest);
                 lane[n] = j;
                 gox[n] = p.px[j], goy[n] = p.py[j], goz[n] = p.pz[j];
                 gdx[n] = mx[j], gdy[n] = my[j], gdz[n] = mz[j], gt[n] = next_t[j], gin[n] = next_inside[j];
