@@ -142,6 +142,9 @@ long long differing_hits(unsigned seed, long long& found, long long& inside) {
         bool in[N];
         Ray<Real> rays[N];
         const std::size_t count = scene.spheres.size();
+        // Half the packets coherent (RayCone then rules spheres out for all lanes), half
+        // of unrelated rays.
+        const bool coherent = round % 2 == 0;
         for (int k = 0; k < N; ++k) {
             const rt::Ellipsoid<Real>& e = tracer.ellipsoid(g() % count);
             rays[k] = random_ray(g, e);
@@ -152,6 +155,16 @@ long long differing_hits(unsigned seed, long long& found, long long& inside) {
                     rays[k].direction = {Real(uniform(g, -9, 9)), Real(uniform(g, -9, 9)),
                                          Real(uniform(g, -9, 9))};
                 }
+            }
+            if (coherent && k > 0) {  // near ray 0, as a packet's mirrored rays are
+                const rt::Vec3<Real> offset{Real(uniform(g, -1, 1)), Real(uniform(g, -1, 1)),
+                                            Real(uniform(g, -1, 1))};
+                const rt::Vec3<Real> turn{Real(uniform(g, -1, 1)), Real(uniform(g, -1, 1)),
+                                          Real(uniform(g, -1, 1))};
+                using std::sqrt;
+                const Real length = sqrt(dot(rays[0].direction, rays[0].direction));
+                rays[k].origin = rays[0].origin + offset * Real(0.05);
+                rays[k].direction = rays[0].direction + turn * (Real(0.05) * length);
             }
             ox[k] = rays[k].origin.x, oy[k] = rays[k].origin.y, oz[k] = rays[k].origin.z;
             dx[k] = rays[k].direction.x, dy[k] = rays[k].direction.y, dz[k] = rays[k].direction.z;

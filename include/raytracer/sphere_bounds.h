@@ -29,6 +29,7 @@
 #include "raytracer/compiler.h"
 #include "raytracer/direction_grid.h"
 #include "raytracer/ellipsoid.h"
+#include "raytracer/ray_cone.h"
 #include "raytracer/scene_precision.h"
 #include "raytracer/vec3.h"
 
@@ -153,13 +154,32 @@ public:
     }
 
     // candidates(origin, direction) for N rays at once, ray k from (ox, oy, oz)[k] along
-    // (dx, dy, dz)[k]: bit k of lanes[i] is set where ellipsoid i is a candidate of ray k.
-    // The same operations per lane, as loops over the lanes that GCC vectorises (one
-    // pass over the ellipsoids for all rays instead of one per ray). lanes: size() entries.
+    // (dx, dy, dz)[k]: writes to listed, in increasing order, the ellipsoids that are a
+    // candidate of some ray, and returns how many; for each such i, bit k of lanes[i] is
+    // set where it is a candidate of ray k. The same operations per lane, as loops over
+    // the lanes that GCC vectorises (one pass over the ellipsoids for all rays instead of
+    // one per ray), after the spheres that no ray can meet are ruled out for the whole
+    // packet (RayCone; that changes no candidate: such a sphere has no candidate lane,
+    // up to the inflation that both tests leave). lanes, listed, scratch: size() entries.
     template <int N>
-    void candidate_lanes(const Real* ox, const Real* oy, const Real* oz, const Real* dx, const Real* dy,
-                         const Real* dz, std::uint32_t* lanes) const {
+    std::size_t candidate_lanes(const Real* ox, const Real* oy, const Real* oz, const Real* dx,
+                                const Real* dy, const Real* dz, std::uint32_t* lanes, std::uint32_t* listed,
+                                C* scratch) const {
         static_assert(N <= 32, "one bit per lane");
+        const std::size_t n = size();
+        std::size_t kept = 0;  // the spheres some ray may meet, in listed
+        const RayCone<C> cone = RayCone<C>::template of<N>(ox, oy, oz, dx, dy, dz);
+        if (cone.usable) {
+            for (std::size_t i = 0; i < n; ++i)
+                scratch[i] = cone.misses(cx_[i], cy_[i], cz_[i], radius_[i], guard2_[i]);
+            for (std::size_t i = 0; i < n; ++i) {
+                listed[kept] = static_cast<std::uint32_t>(i);
+                kept += scratch[i] == 0;
+            }
+        } else {
+            for (std::size_t i = 0; i < n; ++i) listed[i] = static_cast<std::uint32_t>(i);
+            kept = n;
+        }
         C x[N], y[N], z[N], u[N], v[N], w[N], dd[N];
         std::uint32_t bit[N];
         for (int k = 0; k < N; ++k) {
@@ -168,8 +188,9 @@ public:
             dd[k] = u[k] * u[k] + v[k] * v[k] + w[k] * w[k];
             bit[k] = std::uint32_t(1) << k;
         }
-        const std::size_t n = size();
-        for (std::size_t i = 0; i < n; ++i) {
+        std::size_t count = 0;
+        for (std::size_t a = 0; a < kept; ++a) {
+            const std::uint32_t i = listed[a];
             const C cx = cx_[i], cy = cy_[i], cz = cz_[i], radius2 = radius2_[i], guard2 = guard2_[i];
             std::uint32_t set = 0;
             RT_VECTOR_LOOP
@@ -183,7 +204,10 @@ public:
                 set |= cull == 0 ? bit[k] : 0;
             }
             lanes[i] = set;
+            listed[count] = i;  // count <= a: in place
+            count += set != 0;
         }
+        return count;
     }
 
     // The same for a shadow ray towards light number light_index at t = 1: ellipsoids

@@ -284,15 +284,16 @@ public:
                       const Real* dz, Real min_t, TraceScratch<Real>& scratch, std::uint32_t* index, Real* t,
                       bool* inside) const {
         std::uint32_t* lanes = scratch.lanes.data();
-        bounds_.template candidate_lanes<N>(ox, oy, oz, dx, dy, dz, lanes);
+        const std::uint32_t* listed = scratch.candidates.data();
+        const std::size_t count = bounds_.template candidate_lanes<N>(
+            ox, oy, oz, dx, dy, dz, lanes, scratch.candidates.data(), scratch.cull.data());
         min_t *= Real(1) + Real(8) * scene_epsilon<Real>();  // as in closest()
         Real best[N], found[N], far_root[N];
         for (int k = 0; k < N; ++k)
             best[k] = 0, found[k] = 0, far_root[k] = 0, index[k] = TraceScratch<Real>::kNone;
-        const std::size_t n = ellipsoids_.size();
-        for (std::size_t i = 0; i < n; ++i) {
+        for (std::size_t a = 0; a < count; ++a) {
+            const std::uint32_t i = listed[a];
             const std::uint32_t set = lanes[i];
-            if (set == 0) continue;
             Real hit[N], near[N], far[N], take[N], listed[N];
             intersect_lanes<N>(ellipsoids_[i], ox, oy, oz, dx, dy, dz, hit, near, far);
             RT_VECTOR_LOOP
