@@ -284,7 +284,8 @@ public:
                       const Real* dz, Real min_t, TraceScratch<Real>& scratch, std::uint32_t* index, Real* t,
                       bool* inside) const {
         std::uint32_t* lanes = scratch.lanes.data();
-        const std::uint32_t* listed = scratch.candidates.data();
+        // The ellipsoids that some ray may hit, in increasing order.
+        const std::uint32_t* some_ray = scratch.candidates.data();
         const std::size_t count = bounds_.template candidate_lanes<N>(
             ox, oy, oz, dx, dy, dz, lanes, scratch.candidates.data(), scratch.cull.data());
         min_t *= Real(1) + Real(8) * scene_epsilon<Real>();  // as in closest()
@@ -292,7 +293,7 @@ public:
         for (int k = 0; k < N; ++k)
             best[k] = 0, found[k] = 0, far_root[k] = 0, index[k] = TraceScratch<Real>::kNone;
         for (std::size_t a = 0; a < count; ++a) {
-            const std::uint32_t i = listed[a];
+            const std::uint32_t i = some_ray[a];
             const std::uint32_t set = lanes[i];
             Real hit[N], near[N], far[N], take[N], listed[N];
             intersect_lanes<N>(ellipsoids_[i], ox, oy, oz, dx, dy, dz, hit, near, far);
@@ -697,7 +698,7 @@ private:
         V seen[N] = {};
         using Bits = std::uint64_t;
         constexpr const Bits(&kLane)[N] = kLaneBits<N>.bit;
-        const Bits counted = p.count == N ? ~Bits(0) : (Bits(1) << p.count) - 1;
+        const Bits counted = (Bits(1) << p.count) - 1;  // p.count <= N <= 32
         Bits waiting = 0;  // the lanes whose mirrored rays hit something not yet shaded
         RT_VECTOR_LOOP
         for (int k = 0; k < N; ++k) waiting |= next[k] != TraceScratch<Real>::kNone ? kLane[k] : 0;
@@ -711,7 +712,6 @@ private:
             for (int j = 0; j < N; ++j) same |= next[j] == target ? kLane[j] : 0;
             same &= waiting;
             waiting &= ~same;
-            V group[N];
             if (same == counted) {  // all of them (the usual case): the packet's own arrays
                 hit_colours<N>(target, p.count, p.px, p.py, p.pz, mx, my, mz, next_t, next_inside,
                                reflections_left - 1, scratch, seen);
@@ -727,6 +727,7 @@ private:
                 gdx[n] = mx[j], gdy[n] = my[j], gdz[n] = mz[j], gt[n] = next_t[j], gin[n] = next_inside[j];
                 ++n;
             }
+            V group[N];
             by_width(n, [&](auto width) {
                 hit_colours<decltype(width)::value>(target, n, gox, goy, goz, gdx, gdy, gdz, gt, gin,
                                                     reflections_left - 1, scratch, group);
