@@ -108,17 +108,23 @@ public:
         const bool any_seen = std::any_of(rects.begin(), rects.end(), [](const PixelRect& r) {
             return r.first_column <= r.last_column && r.first_row <= r.last_row;
         });
-        if (any_seen && pixels >= cells && cells * double(ellipsoids_.size()) * double(lights_.size()) <= 5e7)
-            build_grids();
+        const bool guarded = any_seen && pixels >= cells &&
+                             cells * double(ellipsoids_.size()) * double(lights_.size()) <= 5e7 &&
+                             everything_guarded();
         enclosures_ = Enclosures<Real>(ellipsoids_, light_positions);
         prefilter_ = ShadowPrefilter<Real>(ellipsoids_);
         // Packets test their shadow rays together (shadow_lanes()) where the light
         // buffers' lists are bit sets and the prefilter works (not in float, whose
         // cells hit_colours() does not look up).
-        packet_shadows_ = std::is_same_v<C, Real> && use_grids_ && prefilter_.enabled() &&
+        packet_shadows_ = std::is_same_v<C, Real> && guarded && prefilter_.enabled() &&
                           ellipsoids_.size() <= DirectionGrid<C>::kMaxBitsEllipsoids &&
                           ellipsoids_.size() <= PairBlockers<Real>::kMaxEllipsoids &&
                           ellipsoids_.size() <= LightCones<C>::kMaxSpheres;
+        // The light buffers serve the shadow rays tested one at a time; packets use
+        // LightCones instead, so with them the buffers are not built (0.04 ms of a course
+        // scene's run): shade()'s rays, which only tests then cast, fall back on the
+        // bounding spheres, as exact.
+        if (guarded && !packet_shadows_) build_grids();
         if (packet_shadows_) {
             std::vector<BoundingSphere<C>> spheres;
             for (std::size_t j = 0; j < bounds_.size(); ++j) spheres.push_back(bounds_.sphere(j));
@@ -379,23 +385,28 @@ private:
     // The rounding allowance on N.L of the self-shadow test in shade().
     static constexpr Real kSelfSlack = Real(32) * std::numeric_limits<Real>::epsilon();
 
-    void build_grids() {
-        // The box of everything a ray can start from or go to: the ellipsoids' spheres,
-        // the lights and the camera. Grids are exact only where rounding is far below
-        // the spheres' inflation for all of it (sphere_bounds.h).
+    // Whether rounding is far below the spheres' inflation (sphere_bounds.h) for the box
+    // of everything a ray can start from or go to: the ellipsoids' spheres, the lights
+    // and the camera. Light buffers and packet shadows are exact only then.
+    bool everything_guarded() const {
         Vec3<C> lo{}, hi{};
         auto grow = [&](C x, C y, C z, C r) {
             lo = {std::min(lo.x, x - r), std::min(lo.y, y - r), std::min(lo.z, z - r)};
             hi = {std::max(hi.x, x + r), std::max(hi.y, y + r), std::max(hi.z, z + r)};
         };
-        std::vector<BoundingSphere<C>> spheres;
         for (std::size_t i = 0; i < bounds_.size(); ++i) {
-            spheres.push_back(bounds_.sphere(i));
-            grow(spheres.back().x, spheres.back().y, spheres.back().z, spheres.back().radius);
+            const BoundingSphere<C> s = bounds_.sphere(i);
+            grow(s.x, s.y, s.z, s.radius);
         }
         for (const PointLight<Real>& l : lights_) grow(C(l.position.x), C(l.position.y), C(l.position.z), 0);
-        use_grids_ = bounds_.guards(lo, hi);
-        if (!use_grids_) return;
+        return bounds_.guards(lo, hi);
+    }
+
+    // The light buffers, where everything_guarded().
+    void build_grids() {
+        std::vector<BoundingSphere<C>> spheres;
+        for (std::size_t i = 0; i < bounds_.size(); ++i) spheres.push_back(bounds_.sphere(i));
+        use_grids_ = true;
         const auto cones = DirectionGrid<C>::cell_cones(kGridCells);
         for (const PointLight<Real>& l : lights_)
             light_grids_.emplace_back(C(l.position.x), C(l.position.y), C(l.position.z), spheres, kGridCells,
