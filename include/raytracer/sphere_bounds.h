@@ -159,8 +159,9 @@ public:
     // set where it is a candidate of ray k. The same operations per lane, as loops over
     // the lanes that GCC vectorises (one pass over the ellipsoids for all rays instead of
     // one per ray), after the spheres that no ray can meet are ruled out for the whole
-    // packet (RayCone; that changes no candidate: such a sphere has no candidate lane,
-    // up to the inflation that both tests leave). lanes, listed, scratch: size() entries.
+    // packet (RayCone: such a sphere's ellipsoid gives no ray a root, by the inflation
+    // argument above, so the nearest hits stay the same). lanes, listed, scratch:
+    // size() entries.
     template <int N>
     std::size_t candidate_lanes(const Real* ox, const Real* oy, const Real* oz, const Real* dx,
                                 const Real* dy, const Real* dz, std::uint32_t* lanes, std::uint32_t* listed,
