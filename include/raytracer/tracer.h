@@ -98,10 +98,12 @@ public:
         for (const Ellipsoid<Real>& e : ellipsoids_) eye_origin_.push_back(mapped_origin(e, V{}));
         accelerate_ = accelerate;
         if (!accelerate) return;
-        // Light buffers pay when there are more shadow rays than cells, and are not
-        // built where their tables would be huge (thousands of lights and ellipsoids),
-        // nor where no eye ray can hit anything (every ellipsoid off screen or behind
-        // the camera: no shadow ray at all; 0.04 ms of testBehind's 1.8 ms run).
+        // guarded: light buffers and packet shadows apply. Light buffers pay when there
+        // are more shadow rays than cells, and are not built where their tables would be
+        // huge (thousands of lights and ellipsoids), nor where no eye ray can hit
+        // anything (every ellipsoid off screen or behind the camera: no shadow ray at
+        // all; 0.04 ms of testBehind's 1.8 ms run), nor where rounding could approach
+        // the spheres' inflation (everything_guarded()).
         const double cells = 6.0 * kGridCells * kGridCells;
         const double pixels = double(scene.columns) * double(scene.rows);
         const std::vector<PixelRect> rects = screen_rects(scene);
@@ -113,11 +115,10 @@ public:
                              everything_guarded();
         enclosures_ = Enclosures<Real>(ellipsoids_, light_positions);
         prefilter_ = ShadowPrefilter<Real>(ellipsoids_);
-        // Packets test their shadow rays together (shadow_lanes()) where the light
-        // buffers' lists are bit sets and the prefilter works (not in float, whose
-        // cells hit_colours() does not look up).
+        // Packets test their shadow rays together (shadow_lanes()) where the same
+        // conditions hold, the prefilter works (not in float) and the ellipsoid sets fit
+        // in 64 bits (LightCones, PairBlockers).
         packet_shadows_ = std::is_same_v<C, Real> && guarded && prefilter_.enabled() &&
-                          ellipsoids_.size() <= DirectionGrid<C>::kMaxBitsEllipsoids &&
                           ellipsoids_.size() <= PairBlockers<Real>::kMaxEllipsoids &&
                           ellipsoids_.size() <= LightCones<C>::kMaxSpheres;
         // The light buffers serve the shadow rays tested one at a time; packets use
