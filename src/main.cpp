@@ -95,7 +95,7 @@ int main(int argc, char** argv) {
         if (error.empty()) {
             // The rows are written while later rows render (render.h).
             rt::P6Writer writer(output, scene.columns, scene.rows);
-            rt::render<double>(scene, threads, true, &writer);
+            rt::render_to<double>(scene, writer, threads);
             error = writer.commit();
         }
         if (!error.empty()) {

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <memory>
 #include <mutex>
+#include <thread>
 #include <vector>
 
 #include "raytracer/eye_rays.h"
@@ -51,6 +52,10 @@ struct Packet {
 constexpr int kTileRows = kPacket >= 16 ? 4 : 2;
 constexpr int kTileColumns = kPacket / kTileRows;
 
+// The rows' way to the sink (render_to()).
+constexpr std::size_t kBlockBytes = std::size_t{1} << 16;
+constexpr int kRingBandsPerThread = 8;
+
 // One thread's working memory, so that no row or pixel allocates.
 template <typename Real>
 struct Workspace {
@@ -85,11 +90,8 @@ std::chrono::microseconds worth_helping() {
 }  // namespace
 
 template <typename Real>
-Image render(const Scene& scene, unsigned threads, bool accelerate, RowSink* sink) {
+void render_to(const Scene& scene, RowSink& sink, unsigned threads, bool accelerate) {
     const Tracer<Real> tracer(scene, accelerate);
-    Image image;
-    image.width = scene.columns;
-    image.height = scene.rows;
 
     const Real left = static_cast<Real>(scene.left), right = static_cast<Real>(scene.right);
     const Real bottom = static_cast<Real>(scene.bottom), top = static_cast<Real>(scene.top);
@@ -108,13 +110,34 @@ Image render(const Scene& scene, unsigned threads, bool accelerate, RowSink* sin
     const std::uint8_t background[3] = {to_byte(back.x), to_byte(back.y), to_byte(back.z)};
 
     // Each row starts as a copy of a background row, written by the thread that renders
-    // the row (the image is not zero-filled first: image.h), and only traced pixels are
-    // written over: most pixels of the course scenes see no ellipsoid, and a copy costs
-    // far less than a per-pixel test (measured in docs/speed.md).
+    // the row, and only traced pixels are written over: most pixels of the course scenes
+    // see no ellipsoid, and a copy costs far less than a per-pixel test (measured in
+    // docs/speed.md).
     const std::size_t row_bytes = static_cast<std::size_t>(scene.columns) * 3;
     std::vector<std::uint8_t> background_row(row_bytes);
     for (std::size_t i = 0; i < row_bytes; ++i) background_row[i] = background[i % 3];
-    image.rgb.resize(row_bytes * static_cast<std::size_t>(scene.rows));
+
+    // Finished rows go to the sink in order, in blocks of at least kBlockBytes, written by
+    // whichever thread finishes the row that completes a block while no block is being
+    // written. WHY: writing a 400x400 image took the calling thread 0.3-0.4 ms after the
+    // render (the kernel's copy into the page cache); a block written by one thread
+    // while the other renders costs the image half of that.
+    const auto block_rows =
+        static_cast<int>(std::max<std::size_t>(1, kBlockBytes / std::max<std::size_t>(1, row_bytes)));
+    // Rows are rendered into a ring of ring_rows rows (row r in slot r % ring_rows), not
+    // into a whole image: a slot is used again once its row is written. WHY: each 4 KiB
+    // of fresh memory costs a page fault, 2 us in this virtual machine; a 400x400 image
+    // is 118 pages, the ring 32. A band waits for its slots only when the rows before it
+    // are that far behind (a helper stalled on an early band).
+    const unsigned most_threads = threads == 0 ? default_thread_count() : threads;
+    const int ring_rows = static_cast<int>(std::min<std::size_t>(
+        static_cast<std::size_t>(scene.rows),
+        std::max<std::size_t>(2 * static_cast<std::size_t>(block_rows),
+                              std::size_t{kTileRows} * kRingBandsPerThread * most_threads)));
+    Bytes ring(row_bytes * static_cast<std::size_t>(ring_rows));
+    auto row_bytes_of = [&](int r) {
+        return ring.data() + static_cast<std::size_t>(r % ring_rows) * row_bytes;
+    };
 
     // Each column's x on the near plane, computed once instead of per row (the same
     // operations, so the same bits).
@@ -146,7 +169,7 @@ Image render(const Scene& scene, unsigned threads, bool accelerate, RowSink* sin
         work.seen.clear();
         int band_lo = scene.columns, band_hi = -1;
         for (int r = first_row; r < end_row; ++r) {
-            std::uint8_t* const row_out = image.rgb.data() + static_cast<std::size_t>(r) * row_bytes;
+            std::uint8_t* const row_out = row_bytes_of(r);
             std::copy(background_row.begin(), background_row.end(), row_out);
             in_row.clear();
             int lo = scene.columns, hi = -1;  // the columns some ellipsoid may cover
@@ -192,7 +215,7 @@ Image render(const Scene& scene, unsigned threads, bool accelerate, RowSink* sin
             for (int r = first_row; r < end_row; ++r) {
                 const int b = r - first_row;
                 const EyeRowHits<Real>& hits = work.hits[static_cast<std::size_t>(b)];
-                std::uint8_t* const row_out = image.rgb.data() + static_cast<std::size_t>(r) * row_bytes;
+                std::uint8_t* const row_out = row_bytes_of(r);
                 const int c_end = std::min(c0 + kTileColumns - 1, row_hi[b]);
                 for (int c = std::max(c0, row_lo[b]); c <= c_end; ++c) {
                     const auto column = static_cast<std::size_t>(c);
@@ -207,29 +230,41 @@ Image render(const Scene& scene, unsigned threads, bool accelerate, RowSink* sin
         for (const std::uint32_t i : work.seen) work.packets[i].shade(tracer, i, scratch);
     };
 
-    // Finished rows go to the sink in order, in blocks of at least 64 KiB, written by
-    // whichever thread finishes the row that completes a block while no block is being
-    // written. WHY: writing a 400x400 image took the calling thread 0.3-0.4 ms after the
-    // render (the kernel's copy into the page cache); a block written by one thread
-    // while the other renders costs the image half of that.
-    const auto block_rows = static_cast<int>(
-        std::max<std::size_t>(1, (std::size_t{1} << 16) / std::max<std::size_t>(1, row_bytes)));
-    const std::unique_ptr<std::atomic<bool>[]> finished(sink ? new std::atomic<bool>[scene.rows]() : nullptr);
+    const std::unique_ptr<std::atomic<bool>[]> finished(new std::atomic<bool>[scene.rows]());
     std::mutex writing;
-    int written = 0;  // rows given to the sink; under writing
-    auto hand_over = [&](int end) {
-        sink->rows(image.rgb.data() + static_cast<std::size_t>(written) * row_bytes,
-                   static_cast<std::size_t>(end - written) * row_bytes);
-        written = end;
+    // Rows given to the sink: changed under writing, read by threads waiting for slots.
+    std::atomic<int> written{0};
+    // Gives the sink the finished rows from written on, if at least at_least of them.
+    // Under writing.
+    auto hand_over = [&](int at_least) {
+        int from = written.load(std::memory_order_relaxed), end = from;
+        while (end < scene.rows && finished[end].load(std::memory_order_acquire)) ++end;
+        if (end - from < std::max(1, at_least)) return;
+        while (from < end) {  // in one piece, or two where the ring wraps
+            const int to = std::min(end, (from / ring_rows + 1) * ring_rows);
+            sink.rows(row_bytes_of(from), static_cast<std::size_t>(to - from) * row_bytes);
+            from = to;
+        }
+        written.store(end, std::memory_order_release);  // their slots are free
     };
     auto row_finished = [&](int r) {
-        if (sink == nullptr) return;
         finished[r].store(true, std::memory_order_release);
         if (!writing.try_lock()) return;  // another thread is writing: it or a later row sends this one
-        int end = written;
-        while (end < scene.rows && finished[end].load(std::memory_order_acquire)) ++end;
-        if (end - written >= block_rows) hand_over(end);
+        hand_over(block_rows);
         writing.unlock();
+    };
+    // Returns once the rows of a band ending before end have free slots: every row up to
+    // ring_rows before end is written. The thread writes what it can meanwhile. It
+    // cannot wait forever: the oldest band being rendered never waits (the rows before
+    // it are finished, so written reaches its first row), and the others wait for it.
+    auto wait_for_slots = [&](int end) {
+        while (end - written.load(std::memory_order_acquire) > ring_rows) {
+            if (writing.try_lock()) {
+                hand_over(1);
+                writing.unlock();
+            }
+            if (end - written.load(std::memory_order_acquire) > ring_rows) std::this_thread::yield();
+        }
     };
 
     // Rows are handed out a band of kTileRows at a time from a shared counter, so that a
@@ -240,6 +275,7 @@ Image render(const Scene& scene, unsigned threads, bool accelerate, RowSink* sin
     auto take_rows = [&](Workspace<Real>& work, auto after_row) {
         for (int r = next_row.fetch_add(kTileRows); r < scene.rows; r = next_row.fetch_add(kTileRows)) {
             const int end = std::min(r + kTileRows, scene.rows);
+            wait_for_slots(end);
             render_rows(r, end, work);
             for (int f = r; f < end; ++f) row_finished(f);
             after_row(end - 1);
@@ -261,7 +297,7 @@ Image render(const Scene& scene, unsigned threads, bool accelerate, RowSink* sin
     // By default (threads = 0) the calling thread starts alone and calls in the other
     // cores only when, at its pace so far, the rest of the image would take it longer
     // than worth_helping(): scenes with few lit pixels are done sooner than a second
-    // thread pays (measured in docs/speed.md), and their core count is never asked.
+    // thread pays (measured in docs/speed.md).
     if (threads > 1) call_helpers(threads);
     Workspace<Real> work(tracer, rects.size(), scene.columns);
     const auto start = std::chrono::steady_clock::now();
@@ -273,20 +309,42 @@ Image render(const Scene& scene, unsigned threads, bool accelerate, RowSink* sin
         const int done = r + 1, left = scene.rows - done;
         const auto elapsed = std::chrono::steady_clock::now() - start;
         if (left > 0 && elapsed * 8 >= worth && elapsed * left >= worth * done) {
-            threads = default_thread_count();
+            threads = most_threads;
             if (threads > 1) call_helpers(std::min<unsigned>(threads, static_cast<unsigned>(left + 1)));
         }
     });
     helpers.finish();
-    if (sink != nullptr && written < scene.rows) {  // every row is finished: the rest
-        const std::lock_guard<std::mutex> lock(writing);
-        hand_over(scene.rows);
+    const std::lock_guard<std::mutex> lock(writing);
+    hand_over(1);  // every row is finished: the rest
+}
+
+namespace {
+// Collects the rows into an image.
+struct ImageSink final : RowSink {
+    Image& image;
+    explicit ImageSink(Image& i) : image(i) {}
+    void rows(const std::uint8_t* bytes, std::size_t size) override {
+        image.rgb.insert(image.rgb.end(), bytes, bytes + size);
     }
+};
+}  // namespace
+
+template <typename Real>
+Image render(const Scene& scene, unsigned threads, bool accelerate) {
+    Image image;
+    image.width = scene.columns;
+    image.height = scene.rows;
+    image.rgb.reserve(static_cast<std::size_t>(scene.columns) * static_cast<std::size_t>(scene.rows) * 3);
+    ImageSink sink(image);
+    render_to<Real>(scene, sink, threads, accelerate);
     return image;
 }
 
-template Image render<float>(const Scene&, unsigned, bool, RowSink*);
-template Image render<double>(const Scene&, unsigned, bool, RowSink*);
-template Image render<long double>(const Scene&, unsigned, bool, RowSink*);
+template void render_to<float>(const Scene&, RowSink&, unsigned, bool);
+template void render_to<double>(const Scene&, RowSink&, unsigned, bool);
+template void render_to<long double>(const Scene&, RowSink&, unsigned, bool);
+template Image render<float>(const Scene&, unsigned, bool);
+template Image render<double>(const Scene&, unsigned, bool);
+template Image render<long double>(const Scene&, unsigned, bool);
 
 }  // namespace rt

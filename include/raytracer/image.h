@@ -16,10 +16,10 @@ namespace rt {
 // An allocator whose resize() leaves new elements default-initialised (for bytes:
 // unwritten) rather than zeroed.
 //
-// WHY: the renderer writes every byte of an image anyway, and a zero fill beforehand
+// WHY: the renderer writes every byte of its rows anyway, and a zero fill beforehand
 // costs the calling thread a page fault per 4 KiB of fresh memory: 2 us each in this
-// virtual machine, 0.24 ms of a 400x400 image. Unwritten, each row's pages are first
-// touched by the thread that renders the row (src/render.cpp), on its own core.
+// virtual machine. Unwritten, the pages of the renderer's row ring are first touched by
+// the threads that render the rows (src/render.cpp), each on its own core.
 template <typename T>
 struct UninitializedAllocator : std::allocator<T> {
     template <typename U>

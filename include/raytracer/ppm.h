@@ -48,7 +48,7 @@ private:
     std::string error_;
 };
 
-// A P6 image written into a pending file as its rows come (a RowSink for render()): the
+// A P6 image written into a pending file as its rows come (a RowSink for render_to()): the
 // header at once, the rows as they come, then commit() checks that all came and
 // commits the file (same return convention as PendingFile::commit()).
 class P6Writer final : public RowSink {

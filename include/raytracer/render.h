@@ -13,11 +13,14 @@ unsigned default_thread_count();
 
 // Instantiated for float, double and long double (src/render.cpp). threads = 0 means
 // default_thread_count(); the image is byte-identical for any number of threads.
-// accelerate = false renders without any shortcut (see Tracer), for tests. A sink, when
-// given, receives every row of the image, in order, before render() returns: most of
-// them while later rows are still being rendered (so that writing a file overlaps the
-// render).
+// accelerate = false renders without any shortcut (see Tracer), for tests.
 template <typename Real>
-Image render(const Scene& scene, unsigned threads = 0, bool accelerate = true, RowSink* sink = nullptr);
+Image render(const Scene& scene, unsigned threads = 0, bool accelerate = true);
+
+// Renders as render() does, but hands the image's rows to sink as they are finished
+// (so that writing a file overlaps the render) and never holds the whole image: every
+// row reaches sink, in order, before render_to() returns.
+template <typename Real>
+void render_to(const Scene& scene, RowSink& sink, unsigned threads = 0, bool accelerate = true);
 
 }  // namespace rt

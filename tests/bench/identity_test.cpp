@@ -5,11 +5,13 @@
 // Scenes: the course scenes (when present), the heavy benchmark scene, and random
 // scenes built to stress the margins (thin, far, negative-scaled and overlapping
 // ellipsoids, lights inside them or on their surface, the eye inside one).
+#include <chrono>
 #include <cstdint>
 #include <filesystem>
 #include <iostream>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "check.h"
@@ -63,13 +65,15 @@ TEST(random_scenes_match_the_plain_tracer) {
     }
 }
 
-// The sink gets the whole image, in order, in whole rows, and (at 400 columns, on one
-// thread) in more than one call: the rows are written while later ones render.
+// render_to() hands its sink the whole image, in order, in whole rows, and (at 400
+// columns, on one thread) in more than one call: the rows are written while later ones
+// render.
 TEST(the_sink_gets_every_row_in_order) {
     for (const auto& [name, scene] : file_scenes(400, 121)) {
+        const rt::Image image = rt::render<double>(scene, 1, false);
         for (unsigned threads : {1U, 2U, 3U, 8U}) {
             RecordingSink sink;
-            const rt::Image image = rt::render<double>(scene, threads, true, &sink);
+            rt::render_to<double>(scene, sink, threads);
             CHECK(sink.bytes == image.rgb);
             const std::size_t row = std::size_t{400} * 3;
             for (std::size_t size : sink.sizes) CHECK(size > 0 && size % row == 0);
@@ -81,9 +85,35 @@ TEST(the_sink_gets_every_row_in_order) {
     for (int rows : {1, 2, 7}) {  // fewer rows than a block: all in one call at the end
         rt::Scene scene = file_scenes(5, rows).front().second;
         RecordingSink sink;
-        const rt::Image image = rt::render<double>(scene, 2, true, &sink);
-        CHECK(sink.bytes == image.rgb);
+        rt::render_to<double>(scene, sink, 2);
+        CHECK(sink.bytes == rt::render<double>(scene, 1, false).rgb);
         CHECK_EQ(sink.sizes.size(), std::size_t{1});
+    }
+}
+
+// A sink that takes its time: its first call holds up the writing for 30 ms, far longer
+// than the rest of the render takes. render_to() keeps only a ring of rows, so threads
+// that run ahead must wait for their rows' slots to be written, and not overwrite them.
+struct SlowSink final : rt::RowSink {
+    RecordingSink recorded;
+    bool first = true;
+    void rows(const std::uint8_t* data, std::size_t size) override {
+        if (first) std::this_thread::sleep_for(std::chrono::milliseconds(30));
+        first = false;
+        recorded.rows(data, size);
+    }
+};
+
+TEST(rows_wait_for_a_slow_sink) {
+    for (const auto& [name, scene] : file_scenes(300, 400)) {
+        const rt::Image image = rt::render<double>(scene, 1, false);
+        for (unsigned threads : {1U, 2U, 4U}) {
+            SlowSink sink;
+            rt::render_to<double>(scene, sink, threads);
+            const bool same = sink.recorded.bytes == image.rgb;
+            if (!same) std::cerr << name << ": " << threads << " threads, slow sink: the image differs\n";
+            CHECK(same);
+        }
     }
 }
 
