@@ -127,8 +127,10 @@ void render_to(const Scene& scene, RowSink& sink, unsigned threads, bool acceler
     // Rows are rendered into a ring of ring_rows rows (row r in slot r % ring_rows), not
     // into a whole image: a slot is used again once its row is written. WHY: each 4 KiB
     // of fresh memory costs a page fault, 2 us in this virtual machine; a 400x400 image
-    // is 118 pages, the ring 32. A band waits for its slots only when the rows before it
-    // are that far behind (a helper stalled on an early band).
+    // is 118 pages, the ring 32. The ring holds two write blocks (one renders while the
+    // other is written; smaller blocks were slower: docs/speed.md) and at least
+    // kRingBandsPerThread bands per thread. A band waits for its slots only when the
+    // rows before it are that far behind (a helper stalled on an early band).
     const unsigned most_threads = threads == 0 ? default_thread_count() : threads;
     const int ring_rows = static_cast<int>(std::min<std::size_t>(
         static_cast<std::size_t>(scene.rows),
