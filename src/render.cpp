@@ -3,13 +3,11 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
-#include <memory>
-#include <mutex>
-#include <thread>
 #include <vector>
 
 #include "raytracer/eye_rays.h"
 #include "raytracer/helper_pool.h"
+#include "raytracer/row_ring.h"
 #include "raytracer/tracer.h"
 
 namespace rt {
@@ -51,10 +49,6 @@ struct Packet {
 // with 8 lanes (x86-64-v3, callgrind): 1 x 8 858M, 2 x 4 818M, 4 x 2 825M, 8 x 1 894M.
 constexpr int kTileRows = kPacket >= 16 ? 4 : 2;
 constexpr int kTileColumns = kPacket / kTileRows;
-
-// The rows' way to the sink (render_to()).
-constexpr std::size_t kBlockBytes = std::size_t{1} << 16;
-constexpr int kRingBandsPerThread = 8;
 
 // One thread's working memory, so that no row or pixel allocates.
 template <typename Real>
@@ -117,29 +111,13 @@ void render_to(const Scene& scene, RowSink& sink, unsigned threads, bool acceler
     std::vector<std::uint8_t> background_row(row_bytes);
     for (std::size_t i = 0; i < row_bytes; ++i) background_row[i] = background[i % 3];
 
-    // Finished rows go to the sink in order, in blocks of at least kBlockBytes, written by
-    // whichever thread finishes the row that completes a block while no block is being
-    // written. WHY: writing a 400x400 image took the calling thread 0.3-0.4 ms after the
-    // render (the kernel's copy into the page cache); a block written by one thread
-    // while the other renders costs the image half of that.
-    const auto block_rows =
-        static_cast<int>(std::max<std::size_t>(1, kBlockBytes / std::max<std::size_t>(1, row_bytes)));
-    // Rows are rendered into a ring of ring_rows rows (row r in slot r % ring_rows), not
-    // into a whole image: a slot is used again once its row is written. WHY: each 4 KiB
-    // of fresh memory costs a page fault, 2 us in this virtual machine; a 400x400 image
-    // is 118 pages, the ring 32. The ring holds two write blocks (one renders while the
-    // other is written; smaller blocks were slower: docs/speed.md) and at least
-    // kRingBandsPerThread bands per thread. A band waits for its slots only when the
-    // rows before it are that far behind (a helper stalled on an early band).
+    // Rows go to the sink from a ring of rows as they are finished (row_ring.h), written
+    // by whichever thread completes a block of them while no block is being written.
+    // WHY: writing a 400x400 image took the calling thread 0.3-0.4 ms after the render
+    // (the kernel's copy into the page cache); a block written by one thread while the
+    // other renders costs the image half of that.
     const unsigned most_threads = threads == 0 ? default_thread_count() : threads;
-    const int ring_rows = static_cast<int>(std::min<std::size_t>(
-        static_cast<std::size_t>(scene.rows),
-        std::max<std::size_t>(2 * static_cast<std::size_t>(block_rows),
-                              std::size_t{kTileRows} * kRingBandsPerThread * most_threads)));
-    Bytes ring(row_bytes * static_cast<std::size_t>(ring_rows));
-    auto row_bytes_of = [&](int r) {
-        return ring.data() + static_cast<std::size_t>(r % ring_rows) * row_bytes;
-    };
+    RowRing ring(sink, scene.rows, row_bytes, kTileRows, most_threads);
 
     // Each column's x on the near plane, computed once instead of per row (the same
     // operations, so the same bits).
@@ -171,7 +149,7 @@ void render_to(const Scene& scene, RowSink& sink, unsigned threads, bool acceler
         work.seen.clear();
         int band_lo = scene.columns, band_hi = -1;
         for (int r = first_row; r < end_row; ++r) {
-            std::uint8_t* const row_out = row_bytes_of(r);
+            std::uint8_t* const row_out = ring.row(r);
             std::copy(background_row.begin(), background_row.end(), row_out);
             in_row.clear();
             int lo = scene.columns, hi = -1;  // the columns some ellipsoid may cover
@@ -217,7 +195,7 @@ void render_to(const Scene& scene, RowSink& sink, unsigned threads, bool acceler
             for (int r = first_row; r < end_row; ++r) {
                 const int b = r - first_row;
                 const EyeRowHits<Real>& hits = work.hits[static_cast<std::size_t>(b)];
-                std::uint8_t* const row_out = row_bytes_of(r);
+                std::uint8_t* const row_out = ring.row(r);
                 const int c_end = std::min(c0 + kTileColumns - 1, row_hi[b]);
                 for (int c = std::max(c0, row_lo[b]); c <= c_end; ++c) {
                     const auto column = static_cast<std::size_t>(c);
@@ -232,43 +210,6 @@ void render_to(const Scene& scene, RowSink& sink, unsigned threads, bool acceler
         for (const std::uint32_t i : work.seen) work.packets[i].shade(tracer, i, scratch);
     };
 
-    const std::unique_ptr<std::atomic<bool>[]> finished(new std::atomic<bool>[scene.rows]());
-    std::mutex writing;
-    // Rows given to the sink: changed under writing, read by threads waiting for slots.
-    std::atomic<int> written{0};
-    // Gives the sink the finished rows from written on, if at least at_least of them.
-    // Under writing.
-    auto hand_over = [&](int at_least) {
-        int from = written.load(std::memory_order_relaxed), end = from;
-        while (end < scene.rows && finished[end].load(std::memory_order_acquire)) ++end;
-        if (end - from < std::max(1, at_least)) return;
-        while (from < end) {  // in one piece, or two where the ring wraps
-            const int to = std::min(end, (from / ring_rows + 1) * ring_rows);
-            sink.rows(row_bytes_of(from), static_cast<std::size_t>(to - from) * row_bytes);
-            from = to;
-        }
-        written.store(end, std::memory_order_release);  // their slots are free
-    };
-    auto row_finished = [&](int r) {
-        finished[r].store(true, std::memory_order_release);
-        if (!writing.try_lock()) return;  // another thread is writing: it or a later row sends this one
-        hand_over(block_rows);
-        writing.unlock();
-    };
-    // Returns once the rows of a band ending before end have free slots: every row up to
-    // ring_rows before end is written. The thread writes what it can meanwhile. It
-    // cannot wait forever: the oldest band being rendered never waits (the rows before
-    // it are finished, so written reaches its first row), and the others wait for it.
-    auto wait_for_slots = [&](int end) {
-        while (end - written.load(std::memory_order_acquire) > ring_rows) {
-            if (writing.try_lock()) {
-                hand_over(1);
-                writing.unlock();
-            }
-            if (end - written.load(std::memory_order_acquire) > ring_rows) std::this_thread::yield();
-        }
-    };
-
     // Rows are handed out a band of kTileRows at a time from a shared counter, so that a
     // thread that draws cheap rows (background) takes more of them, and at the end the
     // calling thread waits for at most one band of a helper's.
@@ -277,9 +218,9 @@ void render_to(const Scene& scene, RowSink& sink, unsigned threads, bool acceler
     auto take_rows = [&](Workspace<Real>& work, auto after_row) {
         for (int r = next_row.fetch_add(kTileRows); r < scene.rows; r = next_row.fetch_add(kTileRows)) {
             const int end = std::min(r + kTileRows, scene.rows);
-            wait_for_slots(end);
+            ring.reserve(end);
             render_rows(r, end, work);
-            for (int f = r; f < end; ++f) row_finished(f);
+            for (int f = r; f < end; ++f) ring.finish(f);
             after_row(end - 1);
         }
     };
@@ -316,8 +257,7 @@ void render_to(const Scene& scene, RowSink& sink, unsigned threads, bool acceler
         }
     });
     helpers.finish();
-    const std::lock_guard<std::mutex> lock(writing);
-    hand_over(1);  // every row is finished: the rest
+    ring.flush();  // every row is finished: the rest
 }
 
 namespace {
