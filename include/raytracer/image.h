@@ -18,8 +18,8 @@ namespace rt {
 //
 // WHY: the renderer writes every byte of its rows anyway, and a zero fill beforehand
 // costs the calling thread a page fault per 4 KiB of fresh memory: 2 us each in this
-// virtual machine. Unwritten, the pages of the renderer's row ring are first touched by
-// the threads that render the rows (src/render.cpp), each on its own core.
+// virtual machine. Unwritten, the pages of the renderer's row ring (row_ring.h) are
+// first touched by the threads that render the rows, each on its own core.
 template <typename T>
 struct UninitializedAllocator : std::allocator<T> {
     template <typename U>

@@ -35,7 +35,7 @@ public:
     // most threads threads at once.
     RowRing(RowSink& sink, int rows, std::size_t row_bytes, int band_rows, unsigned threads);
 
-    // The slots of rows before end - 1 may be used once this returns: every row at
+    // Once this returns, the slots of the rows before end may be used: every row at
     // least a ring before end is written.
     void reserve(int end);
     // Row r's bytes, row_bytes of them; not initialised. Valid from reserve() past r
@@ -50,9 +50,10 @@ public:
     int ring_rows() const { return ring_rows_; }
     int block_rows() const { return block_rows_; }
 
-    // The sink gets blocks of at least this many bytes (but for the last): fewer,
-    // larger writes. WHY 64 KiB: 32 and 16 KiB, with rings to match, were slower
-    // (testIllum at 400x400, medians of 300: 2.21, 2.25, 2.28 ms).
+    // The sink gets blocks of at least this many bytes, or of one row where a row is
+    // larger: fewer, larger writes. Smaller only at the end, where the ring wraps, and
+    // while a thread waits for slots. WHY 64 KiB: 32 and 16 KiB, with rings to match,
+    // were slower (testIllum at 400x400, medians of 300: 2.21, 2.25, 2.28 ms).
     static constexpr std::size_t kBlockBytes = std::size_t{1} << 16;
     // The ring also holds at least this many bands per thread (at large widths a
     // block is only a row or two).
