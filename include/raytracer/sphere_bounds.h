@@ -78,6 +78,13 @@ public:
 
     // The inflated bounding sphere of ellipsoid i.
     BoundingSphere<C> sphere(std::size_t i) const { return {cx_[i], cy_[i], cz_[i], radius_[i]}; }
+    // All of them, in the ellipsoids' order (for the tables built from them).
+    std::vector<BoundingSphere<C>> spheres() const {
+        std::vector<BoundingSphere<C>> all;
+        all.reserve(size());
+        for (std::size_t i = 0; i < size(); ++i) all.push_back(sphere(i));
+        return all;
+    }
 
     // Whether every ellipsoid is within the guard distance of every point of the box
     // [lo, hi]: then rounding cannot approach the inflation for any ray starting there.

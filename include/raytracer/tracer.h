@@ -127,8 +127,7 @@ public:
         // cast, fall back on the bounding spheres, as exact.
         if (guarded && !packet_shadows_) build_grids();
         if (packet_shadows_) {
-            std::vector<BoundingSphere<C>> spheres;
-            for (std::size_t j = 0; j < bounds_.size(); ++j) spheres.push_back(bounds_.sphere(j));
+            const std::vector<BoundingSphere<C>> spheres = bounds_.spheres();
             std::vector<Vec3<C>> positions;
             for (const PointLight<Real>& l : lights_) positions.push_back(Vec3<C>::from(l.position));
             light_cones_ = LightCones<C>(spheres, positions);
@@ -155,13 +154,10 @@ public:
     // Per ellipsoid, the pixels outside which no eye ray meets it (screen_bounds.h);
     // the whole screen for each when not accelerating.
     std::vector<PixelRect> screen_rects(const Scene& scene) const {
-        std::vector<BoundingSphere<C>> spheres;
         std::vector<bool> usable;
-        for (std::size_t i = 0; i < bounds_.size(); ++i) {
-            spheres.push_back(bounds_.sphere(i));
+        for (std::size_t i = 0; i < bounds_.size(); ++i)
             usable.push_back(accelerate_ && bounds_.guards({0, 0, 0}, {0, 0, 0}, i));
-        }
-        return screen_bounds(scene, spheres, usable);
+        return screen_bounds(scene, bounds_.spheres(), usable);
     }
 
     // The nearest surface along origin + t direction with t > min_t.
@@ -405,8 +401,7 @@ private:
 
     // The light buffers, where everything_guarded().
     void build_grids() {
-        std::vector<BoundingSphere<C>> spheres;
-        for (std::size_t i = 0; i < bounds_.size(); ++i) spheres.push_back(bounds_.sphere(i));
+        const std::vector<BoundingSphere<C>> spheres = bounds_.spheres();
         use_grids_ = true;
         const auto cones = DirectionGrid<C>::cell_cones(kGridCells);
         for (const PointLight<Real>& l : lights_)
