@@ -7,6 +7,7 @@
 
 #include "raytracer/eye_rays.h"
 #include "raytracer/helper_pool.h"
+#include "raytracer/render_whitted.h"
 #include "raytracer/row_ring.h"
 #include "raytracer/tracer.h"
 
@@ -85,6 +86,8 @@ std::chrono::microseconds worth_helping() {
 
 template <typename Real>
 void render_to(const Scene& scene, RowSink& sink, unsigned threads, bool accelerate) {
+    if (accelerate && scene.spheres.size() > kFlatSweepEllipsoids)
+        return render_whitted_to<Real>(scene, sink, threads);
     const Tracer<Real> tracer(scene, accelerate);
 
     const Real left = static_cast<Real>(scene.left), right = static_cast<Real>(scene.right);

@@ -1,0 +1,50 @@
+// The two geometry queries of the tracer, closest hit and any hit, by the definition:
+// every ray is tried against every ellipsoid. The reference that the acceleration layer
+// (bvh.h) is held to, byte for byte, and the right choice for a handful of ellipsoids.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "raytracer/ellipsoid.h"
+#include "raytracer/spec_rules.h"
+#include "raytracer/vec3.h"
+
+namespace rt {
+
+template <typename Real>
+class BruteForce {
+public:
+    using V = Vec3<Real>;
+
+    explicit BruteForce(const std::vector<Ellipsoid<Real>>& ellipsoids) : ellipsoids_(&ellipsoids) {}
+
+    // The nearest ellipsoid that origin + t direction meets at a visible root beyond
+    // min_t (spec_rules.h).
+    NearestHit<Real> closest(const V& origin, const V& direction, double min_t) const {
+        const Real beyond = visible_beyond<Real>(min_t);
+        NearestHit<Real> best;
+        const std::vector<Ellipsoid<Real>>& all = *ellipsoids_;
+        for (std::uint32_t i = 0; i < all.size(); ++i) {
+            Real t;
+            bool inside;
+            if (visible_root(intersect(all[i], origin, direction), beyond, t, inside) &&
+                best.replaced_by(t, i))
+                best = {i, t, inside};
+        }
+        return best;
+    }
+
+    // Whether some ellipsoid blocks the shadow ray from point to the light at
+    // point + to_light (spec_rules.h).
+    bool occluded(const V& point, const V& to_light) const {
+        for (const Ellipsoid<Real>& e : *ellipsoids_)
+            if (blocks_shadow_ray(intersect(e, point, to_light))) return true;
+        return false;
+    }
+
+private:
+    const std::vector<Ellipsoid<Real>>* ellipsoids_;
+};
+
+}  // namespace rt

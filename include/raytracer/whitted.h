@@ -1,0 +1,130 @@
+// The reference path of SPEC sections 3-5, in plain scalar code: a pixel's eye ray, the
+// nearest surface it meets, its Phong shading with hard shadows, up to three mirror
+// bounces, and the pixel's bytes. Geometry answers the two queries (closest hit, any
+// hit): BruteForce (brute_force.h) tries every ellipsoid, Bvh (bvh.h) prunes with a
+// tree, and both give the same answers, so the same bytes.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "raytracer/ellipsoid.h"
+#include "raytracer/image.h"
+#include "raytracer/power.h"
+#include "raytracer/scene.h"
+#include "raytracer/spec_rules.h"
+#include "raytracer/vec3.h"
+
+namespace rt {
+
+template <typename Real, typename Geometry>
+class Whitted {
+public:
+    using V = Vec3<Real>;
+
+    explicit Whitted(const Scene& scene)
+        : ellipsoids_(make_ellipsoids(scene)),
+          geometry_(ellipsoids_),
+          ambient_(V::from(scene.ambient)),
+          background_(V::from(scene.background)),
+          left_(Real(scene.left)),
+          right_(Real(scene.right)),
+          bottom_(Real(scene.bottom)),
+          top_(Real(scene.top)),
+          near_z_(-Real(scene.near_plane)),
+          columns_(Real(scene.columns)),
+          rows_(Real(scene.rows)) {
+        for (const LightSpec& l : scene.lights)
+            lights_.push_back({V::from(l.position), V::from(l.intensity)});
+        for (const Ellipsoid<Real>& e : ellipsoids_) {
+            // Ks = 0 makes the specular term exactly zero (pow is finite for R.V <= 1 + a
+            // few ulps and 0 <= n <= 1e6); with Kd = 0 too no light adds anything.
+            const bool no_specular = e.ks == 0 && e.shininess >= 0 && e.shininess <= Real(1e6);
+            materials_.push_back({(ambient_ * e.ka) * e.colour, no_specular, no_specular && e.kd == 0,
+                                  whole_exponent(e.shininess)});
+        }
+    }
+
+    // The x of column c and the y of row r on the near plane: the pixel's top-left
+    // corner, not its centre (the keys demand it; SPEC section 3).
+    Real column_x(int c) const { return left_ + (right_ - left_) * Real(c) / columns_; }
+    Real row_y(int r) const { return top_ - (top_ - bottom_) * Real(r) / rows_; }
+
+    // The three bytes of the pixel whose eye ray goes from the camera through (x, y).
+    void pixel(Real x, Real y, std::uint8_t* out) const {
+        const V colour = trace({}, {x, y, near_z_}, spec::kEyeRayMinT, spec::kMaxReflections, background_);
+        out[0] = to_byte(colour.x), out[1] = to_byte(colour.y), out[2] = to_byte(colour.z);
+    }
+
+    const Geometry& geometry() const { return geometry_; }
+
+private:
+    struct Light {
+        V position, intensity;
+    };
+    struct Material {
+        V ambient;              // Ka * Ia * O
+        bool no_specular;       // Ks = 0 (and pow finite)
+        bool no_lighting;       // Kd = Ks = 0
+        std::int32_t exponent;  // whole_exponent(n): -1 when pow() is needed
+    };
+
+    static std::vector<Ellipsoid<Real>> make_ellipsoids(const Scene& scene) {
+        std::vector<Ellipsoid<Real>> all;
+        all.reserve(scene.spheres.size());
+        for (const SphereSpec& s : scene.spheres) all.push_back(make_ellipsoid<Real>(s));
+        return all;
+    }
+
+    // The colour seen along origin + t direction beyond min_t; miss when nothing is hit
+    // (BACK for eye rays, black for reflected rays).
+    V trace(const V& origin, const V& direction, double min_t, int reflections_left, const V& miss) const {
+        const NearestHit<Real> hit = geometry_.closest(origin, direction, min_t);
+        return hit.found() ? shade(hit, origin, direction, reflections_left) : miss;
+    }
+
+    // The colour of the surface hit by origin + t direction. The terms are multiplied in
+    // the order the handout writes them: Ka*Ia*O, Kd*Ip*(N.L)*O and Ks*Ip*(R.V)^n; a
+    // different order moves a few pixels across a truncation step. A term that is
+    // exactly zero is skipped (adding it changes at most the sign of a zero channel).
+    V shade(const NearestHit<Real>& hit, const V& origin, const V& direction, int reflections_left) const {
+        const Ellipsoid<Real>& e = ellipsoids_[hit.ellipsoid];
+        const Material& m = materials_[hit.ellipsoid];
+        V colour = m.ambient;
+        const bool reflects = e.kr > 0 && reflections_left > 0;
+        if (m.no_lighting && !reflects) return colour;
+
+        const V point = origin + direction * hit.t;
+        V normal = normalize((point - e.centre) / e.scale_squared);
+        if (hit.inside) normal = -normal;  // seen from inside: face the viewer
+        const V to_viewer = normalize(-direction);
+        for (std::size_t li = 0; li < lights_.size() && !m.no_lighting; ++li) {
+            const Light& light = lights_[li];
+            const V to_light = light.position - point;  // the light at t = 1
+            const V l = normalize(to_light);
+            const Real n_dot_l = dot(normal, l);
+            // A light behind the surface adds nothing, blocked or not.
+            if (!(n_dot_l > 0) || geometry_.occluded(point, to_light)) continue;
+            colour += light.intensity * e.kd * n_dot_l * e.colour;
+            if (m.no_specular) continue;
+            const V reflected_light = normal * (2 * n_dot_l) - l;
+            const Real r_dot_v = dot(reflected_light, to_viewer);
+            if (r_dot_v > 0)
+                colour += light.intensity * e.ks * specular_power(r_dot_v, e.shininess, m.exponent);
+        }
+        if (reflects) {
+            const V mirrored = direction - normal * (2 * dot(normal, direction));
+            colour += trace(point, mirrored, spec::kReflectedRayMinT, reflections_left - 1, V{}) * e.kr;
+        }
+        return colour;
+    }
+
+    std::vector<Ellipsoid<Real>> ellipsoids_;
+    Geometry geometry_;  // refers to ellipsoids_
+    std::vector<Light> lights_;
+    std::vector<Material> materials_;  // per ellipsoid
+    V ambient_, background_;
+    Real left_, right_, bottom_, top_, near_z_, columns_, rows_;
+};
+
+}  // namespace rt

@@ -1,0 +1,57 @@
+#include "raytracer/render_whitted.h"
+
+#include <algorithm>
+#include <atomic>
+#include <vector>
+
+#include "raytracer/bvh.h"
+#include "raytracer/helper_pool.h"
+#include "raytracer/render.h"
+#include "raytracer/row_ring.h"
+#include "raytracer/whitted.h"
+
+namespace rt {
+
+template <typename Real>
+void render_whitted_to(const Scene& scene, RowSink& sink, unsigned threads) {
+    const Whitted<Real, Bvh<Real>> tracer(scene);
+    const std::size_t row_bytes = static_cast<std::size_t>(scene.columns) * 3;
+    const unsigned count = std::min<unsigned>(threads == 0 ? default_thread_count() : threads,
+                                              static_cast<unsigned>(scene.rows));
+    // Bands of a few rows from a shared counter, so that a thread that draws cheap rows
+    // takes more of them; the rows go to the sink from a ring as they are finished.
+    constexpr int kBandRows = 4;
+    RowRing ring(sink, scene.rows, row_bytes, kBandRows, count);
+    std::vector<Real> column_x(static_cast<std::size_t>(scene.columns));
+    for (int c = 0; c < scene.columns; ++c) column_x[static_cast<std::size_t>(c)] = tracer.column_x(c);
+
+    // Every pixel is a pure function of the scene and its (column, row), so the image is
+    // the same whichever thread renders which rows.
+    std::atomic<int> next_row{0};
+    auto take_rows = [&]() {
+        for (int r = next_row.fetch_add(kBandRows); r < scene.rows; r = next_row.fetch_add(kBandRows)) {
+            const int end = std::min(r + kBandRows, scene.rows);
+            ring.reserve(end);
+            for (int row = r; row < end; ++row) {
+                std::uint8_t* const out = ring.row(row);
+                const Real y = tracer.row_y(row);
+                for (std::size_t c = 0; c < column_x.size(); ++c) tracer.pixel(column_x[c], y, out + c * 3);
+                ring.finish(row);
+            }
+        }
+    };
+    using TakeRows = decltype(take_rows);
+    HelperPool::Job helpers;
+    if (count > 1)
+        helpers.start(
+            count - 1, [](void* context, unsigned) { (*static_cast<TakeRows*>(context))(); }, &take_rows);
+    take_rows();
+    helpers.finish();
+    ring.flush();
+}
+
+template void render_whitted_to<float>(const Scene&, RowSink&, unsigned);
+template void render_whitted_to<double>(const Scene&, RowSink&, unsigned);
+template void render_whitted_to<long double>(const Scene&, RowSink&, unsigned);
+
+}  // namespace rt

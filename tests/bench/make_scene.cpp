@@ -1,0 +1,32 @@
+// Writes a scale scene (scale_scenes.h) as a scene file:
+//
+//   make_scene flake LEVEL FILE      a sphereflake, levels 1-6
+//   make_scene random N FILE         N random ellipsoids (seed 1)
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+
+#include "scale_scenes.h"
+
+int main(int argc, char** argv) {
+    if (argc != 4 || (std::strcmp(argv[1], "flake") != 0 && std::strcmp(argv[1], "random") != 0)) {
+        std::fprintf(stderr, "usage: make_scene flake LEVEL FILE | make_scene random N FILE\n");
+        return 2;
+    }
+    const long n = std::strtol(argv[2], nullptr, 10);
+    const bool flake = std::strcmp(argv[1], "flake") == 0;
+    if (flake ? (n < 1 || n > 6) : (n < 1 || n > 10000000)) {
+        std::fprintf(stderr, "make_scene: %s is out of range\n", argv[2]);
+        return 2;
+    }
+    const rt::Scene scene =
+        flake ? scale::sphereflake(static_cast<int>(n)) : scale::random_ellipsoids(static_cast<int>(n));
+    const std::string text = scale::scene_text(scene);
+    std::FILE* f = std::fopen(argv[3], "wb");
+    if (f == nullptr || std::fwrite(text.data(), 1, text.size(), f) != text.size() || std::fclose(f) != 0) {
+        std::fprintf(stderr, "make_scene: cannot write %s\n", argv[3]);
+        return 3;
+    }
+    return 0;
+}
