@@ -29,13 +29,15 @@ void render_whitted_to(const Scene& scene, RowSink& sink, unsigned threads) {
     // the same whichever thread renders which rows.
     std::atomic<int> next_row{0};
     auto take_rows = [&]() {
+        auto scratch = tracer.make_scratch();
         for (int r = next_row.fetch_add(kBandRows); r < scene.rows; r = next_row.fetch_add(kBandRows)) {
             const int end = std::min(r + kBandRows, scene.rows);
             ring.reserve(end);
             for (int row = r; row < end; ++row) {
                 std::uint8_t* const out = ring.row(row);
                 const Real y = tracer.row_y(row);
-                for (std::size_t c = 0; c < column_x.size(); ++c) tracer.pixel(column_x[c], y, out + c * 3);
+                for (std::size_t c = 0; c < column_x.size(); ++c)
+                    tracer.pixel(column_x[c], y, out + c * 3, scratch);
                 ring.finish(row);
             }
         }

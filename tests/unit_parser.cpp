@@ -1,5 +1,9 @@
 // The scene parser: layouts the course files use, number forms, and the first
 // mistake reported on its own line.
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <random>
 #include <string>
 
 #include "check.h"
@@ -115,6 +119,38 @@ TEST(accepts_every_decimal_form) {
     CHECK_EQ(s.spheres[0].scale.y, 25.0);
     CHECK_EQ(s.spheres[0].scale.z, 7.0);
     CHECK_EQ(s.spheres[0].shininess, 10.5);
+}
+
+// Every decimal form reads to the double strtod gives, bit for bit: random signs,
+// digit counts up to 25 (past double's 17), leading and trailing points, exponents
+// from -340 to 330 (denormals, underflow to 0; overflow is refused), leading zeros.
+TEST(numbers_read_as_strtod_reads_them) {
+    std::mt19937 g(5);
+    auto digits = [&](int n) {
+        std::string d;
+        for (int i = 0; i < n; ++i) d += static_cast<char>('0' + g() % 10);
+        return d;
+    };
+    int checked = 0;
+    for (int k = 0; k < 20000; ++k) {
+        std::string t = g() % 4 == 0 ? "-" : g() % 8 == 0 ? "+" : "";
+        const int whole = static_cast<int>(g() % 12), fraction = static_cast<int>(g() % 14);
+        t += digits(whole);
+        if (fraction > 0 || whole == 0 || g() % 4 == 0)
+            t += "." + digits(whole == 0 ? fraction + 1 : fraction);
+        if (g() % 2 == 0) t += (g() % 2 ? "e" : "E") + std::to_string(static_cast<int>(g() % 671) - 340);
+        const double expected = std::strtod(t.c_str(), nullptr);
+        if (!(expected - expected == 0)) continue;  // overflow: refused, checked elsewhere
+        const rt::Scene s =
+            rt::parse_scene(with_line(7, "SPHERE s " + t + " 0 0 1 1 1 0 0 0 0 0 0 0 1"), "x");
+        const double got = s.spheres[0].centre.x;
+        std::uint64_t a = 0, b = 0;
+        std::memcpy(&a, &got, sizeof a), std::memcpy(&b, &expected, sizeof b);
+        if (a != b) std::cerr << "'" << t << "' read as " << got << ", strtod gives " << expected << "\n";
+        CHECK(a == b);
+        ++checked;
+    }
+    CHECK(checked > 15000);
 }
 
 TEST(spheres_and_lights_are_optional_and_unlimited) {

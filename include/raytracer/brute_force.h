@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "raytracer/ellipsoid.h"
@@ -17,14 +18,17 @@ class BruteForce {
 public:
     using V = Vec3<Real>;
 
-    explicit BruteForce(const std::vector<Ellipsoid<Real>>& ellipsoids) : ellipsoids_(&ellipsoids) {}
+    explicit BruteForce(std::vector<Ellipsoid<Real>> ellipsoids) : ellipsoids_(std::move(ellipsoids)) {}
+
+    // Ellipsoid i of the scene.
+    const Ellipsoid<Real>& ellipsoid(std::uint32_t i) const { return ellipsoids_[i]; }
 
     // The nearest ellipsoid that origin + t direction meets at a visible root beyond
     // min_t (spec_rules.h).
     NearestHit<Real> closest(const V& origin, const V& direction, double min_t) const {
         const Real beyond = visible_beyond<Real>(min_t);
         NearestHit<Real> best;
-        const std::vector<Ellipsoid<Real>>& all = *ellipsoids_;
+        const std::vector<Ellipsoid<Real>>& all = ellipsoids_;
         for (std::uint32_t i = 0; i < all.size(); ++i) {
             Real t;
             bool inside;
@@ -36,15 +40,19 @@ public:
     }
 
     // Whether some ellipsoid blocks the shadow ray from point to the light at
-    // point + to_light (spec_rules.h).
-    bool occluded(const V& point, const V& to_light) const {
-        for (const Ellipsoid<Real>& e : *ellipsoids_)
-            if (blocks_shadow_ray(intersect(e, point, to_light))) return true;
+    // point + to_light (spec_rules.h). blocker: the one that blocked last, tried first
+    // (kNoBlocker for none), and set to the one found; the answer is the same whichever
+    // is tried first.
+    bool occluded(const V& point, const V& to_light, std::uint32_t& blocker) const {
+        const std::vector<Ellipsoid<Real>>& all = ellipsoids_;
+        if (blocker < all.size() && blocks_shadow_ray(intersect(all[blocker], point, to_light))) return true;
+        for (std::uint32_t i = 0; i < all.size(); ++i)
+            if (blocks_shadow_ray(intersect(all[i], point, to_light))) return blocker = i, true;
         return false;
     }
 
 private:
-    const std::vector<Ellipsoid<Real>>* ellipsoids_;
+    std::vector<Ellipsoid<Real>> ellipsoids_;
 };
 
 }  // namespace rt

@@ -33,6 +33,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "raytracer/bit_scan.h"
@@ -54,7 +55,7 @@ public:
 
     static constexpr double kInflation = 1e-3;  // as sphere_bounds.h
 
-    explicit Bvh(const std::vector<Ellipsoid<Real>>& ellipsoids);
+    explicit Bvh(std::vector<Ellipsoid<Real>> ellipsoids);
 
     // As BruteForce::closest(): the nearest visible root beyond min_t.
     NearestHit<Real> closest(const V& origin, const V& direction, double min_t) const {
@@ -75,16 +76,25 @@ public:
         return best;
     }
 
-    // As BruteForce::occluded(): whether some ellipsoid blocks the shadow ray.
-    bool occluded(const V& point, const V& to_light) const {
+    // As BruteForce::occluded(): whether some ellipsoid blocks the shadow ray, trying
+    // first the one that blocked this light last (blocker: a position in leaf order).
+    bool occluded(const V& point, const V& to_light, std::uint32_t& blocker) const {
+        if (blocker < items_.size() && blocks_shadow_ray(intersect(items_[blocker], point, to_light)))
+            return true;
         bool blocked = false;
         traverse(point, to_light, C(spec::kShadowRayMinT), C(1), [&](Child leaf, C&) {
             for (std::uint32_t k = leaf.first; k < leaf.first + leaf.count; ++k)
-                if (blocks_shadow_ray(intersect(items_[k], point, to_light))) return blocked = true;
+                if (k != blocker && blocks_shadow_ray(intersect(items_[k], point, to_light))) {
+                    blocker = k;
+                    return blocked = true;
+                }
             return false;
         });
         return blocked;
     }
+
+    // Ellipsoid i of the scene.
+    const Ellipsoid<Real>& ellipsoid(std::uint32_t i) const { return items_[position_[i]]; }
 
     std::size_t node_count() const { return nodes_.size(); }
 
@@ -114,10 +124,14 @@ private:
     // leaf(child, t1) may lower t1 and returns true to end the search.
     template <typename Leaf>
     void traverse(const V& origin, const V& direction, C t0, C t1, Leaf leaf) const;
+    template <bool kGuarded, typename Leaf>
+    void traverse(const C (&o)[3], const C (&inv)[3], C t0, C t1, Leaf leaf) const;
 
     // Which children of node the ray may meet within [t0, t1] (bit k for child k), and
     // where it enters each. A slab is computed with at most 3 roundings, so the far end
     // is widened by 2 gamma(3) (pbrt-v4, section 6.8.2).
+    // kGuarded: the ray's origin is known to be within every guard distance.
+    template <bool kGuarded>
     static unsigned meets(const Node& node, const C (&o)[3], const C (&inv)[3], C t0, C t1,
                           C (&near)[Width]) {
         constexpr C kEps = std::numeric_limits<C>::epsilon() / 2;
@@ -135,6 +149,7 @@ private:
                 const C first = p < q ? p : q, last = (p < q ? q : p) * kWiden;
                 enter[k] = first > enter[k] ? first : enter[k];
                 leave[k] = last < leave[k] ? last : leave[k];
+                if (kGuarded) continue;
                 const C reach = std::max(std::abs(from_lo), std::abs(from_hi));
                 farthest[k] = reach > farthest[k] ? reach : farthest[k];
             }
@@ -142,7 +157,7 @@ private:
         bool hit[Width];
         RT_VECTOR_LOOP
         for (int k = 0; k < Width; ++k) {
-            const bool guarded = farthest[k] <= node.guard[k];
+            const bool guarded = kGuarded || farthest[k] <= node.guard[k];
             hit[k] = !guarded || enter[k] <= leave[k];
             near[k] = guarded ? enter[k] : t0;
         }
@@ -155,8 +170,11 @@ private:
 
     std::vector<Node> nodes_;
     Child root_{0, 0};
-    std::vector<Ellipsoid<Real>> items_;  // in leaf order
-    std::vector<std::uint32_t> index_;    // items_[k] is the ellipsoid index_[k] of the scene
+    BuildBox<C> bounds_{};                 // of every box
+    C guard_ = 0;                          // the smallest guard
+    std::vector<Ellipsoid<Real>> items_;   // in leaf order
+    std::vector<std::uint32_t> index_;     // items_[k] is the ellipsoid index_[k] of the scene
+    std::vector<std::uint32_t> position_;  // and ellipsoid i is items_[position_[i]]
 };
 
 template <typename Real, int Width>
@@ -165,6 +183,20 @@ void Bvh<Real, Width>::traverse(const V& origin, const V& direction, C t0, C t1,
     if (items_.empty()) return;
     const C o[3] = {C(origin.x), C(origin.y), C(origin.z)};
     const C inv[3] = {1 / C(direction.x), 1 / C(direction.y), 1 / C(direction.z)};
+    // Nearly every ray starts within every guard distance (the scene is far smaller than
+    // 1e6 of its smallest scale): then no node needs its guards checked.
+    C farthest = 0;
+    for (int a = 0; a < 3; ++a)
+        farthest = std::max({farthest, std::abs(bounds_.lo[a] - o[a]), std::abs(bounds_.hi[a] - o[a])});
+    if (farthest <= guard_)
+        traverse<true>(o, inv, t0, t1, leaf);
+    else
+        traverse<false>(o, inv, t0, t1, leaf);
+}
+
+template <typename Real, int Width>
+template <bool kGuarded, typename Leaf>
+void Bvh<Real, Width>::traverse(const C (&o)[3], const C (&inv)[3], C t0, C t1, Leaf leaf) const {
     StackEntry stack[kStack];  // NOLINT(cppcoreguidelines-pro-type-member-init): written before read
     int size = 0;
     stack[size++] = {root_, t0};
@@ -177,7 +209,7 @@ void Bvh<Real, Width>::traverse(const V& origin, const V& direction, C t0, C t1,
         }
         const Node& node = nodes_[entry.child.first];
         C near[Width];
-        unsigned mask = meets(node, o, inv, t0, t1, near);
+        unsigned mask = meets<kGuarded>(node, o, inv, t0, t1, near);
         // Pushed farthest first, so that the nearest is visited next.
         StackEntry hits[Width];
         int count = 0;
@@ -192,7 +224,7 @@ void Bvh<Real, Width>::traverse(const V& origin, const V& direction, C t0, C t1,
 }
 
 template <typename Real, int Width>
-Bvh<Real, Width>::Bvh(const std::vector<Ellipsoid<Real>>& ellipsoids) {
+Bvh<Real, Width>::Bvh(std::vector<Ellipsoid<Real>> ellipsoids) {
     // Rounding of intersect() in the unit space grows like epsilon(Real) times the
     // distance in units of the smallest scale: as sphere_bounds.h, at most 1e6 smallest
     // scales in double (1e2 in float). The Euclidean distance is at most sqrt(3) times
@@ -217,10 +249,28 @@ Bvh<Real, Width>::Bvh(const std::vector<Ellipsoid<Real>>& ellipsoids) {
         item.index = static_cast<std::uint32_t>(i);
     }
     const std::vector<BuildNode<C>> binary = BinaryTreeBuilder<C>().build(items);
-    items_.reserve(items.size()), index_.reserve(items.size());
-    for (const BuildItem<C>& item : items)
-        items_.push_back(ellipsoids[item.index]), index_.push_back(item.index);
+    index_.reserve(items.size());
+    position_.resize(items.size());
+    for (const BuildItem<C>& item : items) {
+        position_[item.index] = static_cast<std::uint32_t>(index_.size());
+        index_.push_back(item.index);
+    }
+    std::vector<BuildItem<C>>().swap(items);  // not needed past this: a lower peak
+    // The ellipsoids into leaf order in place, cycle by cycle (no second copy).
+    std::vector<bool> placed(ellipsoids.size());
+    for (std::size_t k = 0; k < ellipsoids.size(); ++k) {
+        if (placed[k]) continue;
+        const Ellipsoid<Real> first = ellipsoids[k];
+        std::size_t j = k;
+        for (; index_[j] != k; j = index_[j]) ellipsoids[j] = ellipsoids[index_[j]], placed[j] = true;
+        ellipsoids[j] = first, placed[j] = true;
+    }
+    items_ = std::move(ellipsoids);
     if (binary.empty()) return;
+    bounds_ = binary[0].box, guard_ = binary[0].guard;
+    // At most one wide node per inner binary node: reserved (pages that are never
+    // written cost no memory), so that the list is not copied as it grows.
+    nodes_.reserve(binary.size() / 2);
     if (binary[0].count > 0)
         root_ = {binary[0].first, binary[0].count};
     else

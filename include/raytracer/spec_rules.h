@@ -50,6 +50,10 @@ bool blocks_shadow_ray(const Roots<Real>& r) {
     return r.hit && ((r.near > min_t && r.near < 1) || (r.far > min_t && r.far < 1));
 }
 
+// A geometry's hint for its any-hit query, per light and thread: which ellipsoid to try
+// first (the one that blocked this light last); kNoBlocker before any.
+inline constexpr std::uint32_t kNoBlocker = 0xFFFFFFFFU;
+
 // The answer of a closest-hit query: the ellipsoid a ray sees first, at t.
 template <typename Real>
 struct NearestHit {

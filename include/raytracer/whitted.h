@@ -23,8 +23,7 @@ public:
     using V = Vec3<Real>;
 
     explicit Whitted(const Scene& scene)
-        : ellipsoids_(make_ellipsoids(scene)),
-          geometry_(ellipsoids_),
+        : geometry_(make_ellipsoids(scene)),
           ambient_(V::from(scene.ambient)),
           background_(V::from(scene.background)),
           left_(Real(scene.left)),
@@ -36,7 +35,8 @@ public:
           rows_(Real(scene.rows)) {
         for (const LightSpec& l : scene.lights)
             lights_.push_back({V::from(l.position), V::from(l.intensity)});
-        for (const Ellipsoid<Real>& e : ellipsoids_) {
+        for (std::uint32_t i = 0; i < scene.spheres.size(); ++i) {
+            const Ellipsoid<Real>& e = geometry_.ellipsoid(i);
             // Ks = 0 makes the specular term exactly zero (pow is finite for R.V <= 1 + a
             // few ulps and 0 <= n <= 1e6); with Kd = 0 too no light adds anything.
             const bool no_specular = e.ks == 0 && e.shininess >= 0 && e.shininess <= Real(1e6);
@@ -50,9 +50,17 @@ public:
     Real column_x(int c) const { return left_ + (right_ - left_) * Real(c) / columns_; }
     Real row_y(int r) const { return top_ - (top_ - bottom_) * Real(r) / rows_; }
 
+    // A thread's working memory: per light, the geometry's hint for its shadow rays
+    // (spec_rules.h). Neighbouring pixels share their shadows.
+    struct Scratch {
+        std::vector<std::uint32_t> blockers;
+    };
+    Scratch make_scratch() const { return {std::vector<std::uint32_t>(lights_.size(), kNoBlocker)}; }
+
     // The three bytes of the pixel whose eye ray goes from the camera through (x, y).
-    void pixel(Real x, Real y, std::uint8_t* out) const {
-        const V colour = trace({}, {x, y, near_z_}, spec::kEyeRayMinT, spec::kMaxReflections, background_);
+    void pixel(Real x, Real y, std::uint8_t* out, Scratch& scratch) const {
+        const V colour =
+            trace({}, {x, y, near_z_}, spec::kEyeRayMinT, spec::kMaxReflections, background_, scratch);
         out[0] = to_byte(colour.x), out[1] = to_byte(colour.y), out[2] = to_byte(colour.z);
     }
 
@@ -78,17 +86,19 @@ private:
 
     // The colour seen along origin + t direction beyond min_t; miss when nothing is hit
     // (BACK for eye rays, black for reflected rays).
-    V trace(const V& origin, const V& direction, double min_t, int reflections_left, const V& miss) const {
+    V trace(const V& origin, const V& direction, double min_t, int reflections_left, const V& miss,
+            Scratch& scratch) const {
         const NearestHit<Real> hit = geometry_.closest(origin, direction, min_t);
-        return hit.found() ? shade(hit, origin, direction, reflections_left) : miss;
+        return hit.found() ? shade(hit, origin, direction, reflections_left, scratch) : miss;
     }
 
     // The colour of the surface hit by origin + t direction. The terms are multiplied in
     // the order the handout writes them: Ka*Ia*O, Kd*Ip*(N.L)*O and Ks*Ip*(R.V)^n; a
     // different order moves a few pixels across a truncation step. A term that is
     // exactly zero is skipped (adding it changes at most the sign of a zero channel).
-    V shade(const NearestHit<Real>& hit, const V& origin, const V& direction, int reflections_left) const {
-        const Ellipsoid<Real>& e = ellipsoids_[hit.ellipsoid];
+    V shade(const NearestHit<Real>& hit, const V& origin, const V& direction, int reflections_left,
+            Scratch& scratch) const {
+        const Ellipsoid<Real>& e = geometry_.ellipsoid(hit.ellipsoid);
         const Material& m = materials_[hit.ellipsoid];
         V colour = m.ambient;
         const bool reflects = e.kr > 0 && reflections_left > 0;
@@ -104,7 +114,7 @@ private:
             const V l = normalize(to_light);
             const Real n_dot_l = dot(normal, l);
             // A light behind the surface adds nothing, blocked or not.
-            if (!(n_dot_l > 0) || geometry_.occluded(point, to_light)) continue;
+            if (!(n_dot_l > 0) || geometry_.occluded(point, to_light, scratch.blockers[li])) continue;
             colour += light.intensity * e.kd * n_dot_l * e.colour;
             if (m.no_specular) continue;
             const V reflected_light = normal * (2 * n_dot_l) - l;
@@ -114,13 +124,13 @@ private:
         }
         if (reflects) {
             const V mirrored = direction - normal * (2 * dot(normal, direction));
-            colour += trace(point, mirrored, spec::kReflectedRayMinT, reflections_left - 1, V{}) * e.kr;
+            colour +=
+                trace(point, mirrored, spec::kReflectedRayMinT, reflections_left - 1, V{}, scratch) * e.kr;
         }
         return colour;
     }
 
-    std::vector<Ellipsoid<Real>> ellipsoids_;
-    Geometry geometry_;  // refers to ellipsoids_
+    Geometry geometry_;  // holds the ellipsoids
     std::vector<Light> lights_;
     std::vector<Material> materials_;  // per ellipsoid
     V ambient_, background_;

@@ -70,6 +70,7 @@ int queries_differing(const rt::Scene& scene, unsigned seed) {
     const rt::Bvh<Real> tree(all);
     std::mt19937 g(seed);
     int differing = 0;
+    std::uint32_t tree_hint = rt::kNoBlocker;  // carried from ray to ray, as per light in a render
     for (int k = 0; k < 3000; ++k) {
         const rt::Ellipsoid<Real>& target = all[g() % all.size()];
         // A point on the target's surface (a hit point), the camera, or anywhere.
@@ -85,7 +86,11 @@ int queries_differing(const rt::Scene& scene, unsigned seed) {
         for (double min_t : {1.0, 0.0001})
             differing +=
                 !same_hit(tree.closest(origin, direction, min_t), plain.closest(origin, direction, min_t));
-        differing += tree.occluded(origin, direction) != plain.occluded(origin, direction);
+        // With and without a hint, which changes the order of the tests only.
+        std::uint32_t no_hint = rt::kNoBlocker, plain_hint = rt::kNoBlocker;
+        const bool blocked = plain.occluded(origin, direction, plain_hint);
+        differing += tree.occluded(origin, direction, no_hint) != blocked;
+        differing += tree.occluded(origin, direction, tree_hint) != blocked;
     }
     return differing;
 }
@@ -106,11 +111,12 @@ template <typename Real>
 bool reference_as_plain(const std::string& name, const rt::Scene& s) {
     const rt::Image plain = rt::render<Real>(s, 1, false);
     const rt::Whitted<Real, rt::BruteForce<Real>> reference(s);
+    auto scratch = reference.make_scratch();
     long long differing = 0;
     for (int r = 0; r < s.rows; ++r)
         for (int c = 0; c < s.columns; ++c) {
             std::uint8_t pixel[3];
-            reference.pixel(reference.column_x(c), reference.row_y(r), pixel);
+            reference.pixel(reference.column_x(c), reference.row_y(r), pixel, scratch);
             const std::size_t at =
                 (static_cast<std::size_t>(r) * std::size_t(s.columns) + std::size_t(c)) * 3;
             differing +=
