@@ -11,9 +11,9 @@
 // machine falls on all of them alike. It never fails on timing: it reports.
 //
 // usage: benchmark --raytracer EXE --baseline EXE --floor EXE --course DIR --heavy FILE
-//                  [--quick] [--runs N]
+//                  [--make-scene EXE] [--povray RENDER_SH] [--quick] [--runs N]
+//   (d), (e): scale_table.h.
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -24,53 +24,19 @@
 #include <string>
 #include <vector>
 
+#include "bench_process.h"
 #include "raytracer/image.h"
 #include "raytracer/ppm.h"
-
-#ifdef _WIN32
-#include <process.h>
-#else
-#include <spawn.h>
-#include <sys/wait.h>
-extern char** environ;  // NOLINT(readability-redundant-declaration): POSIX asks programs to declare it
-#endif
+#include "scale_table.h"
 
 namespace {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
-
-// Runs a program and waits for it; returns the wall time in seconds, or -1 on failure.
-double run(const std::vector<std::string>& argv) {
-    std::vector<char*> args;
-    args.reserve(argv.size() + 1);
-    for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-    args.push_back(nullptr);
-    const auto start = Clock::now();
-#ifdef _WIN32
-    const intptr_t status = _spawnv(_P_WAIT, args[0], args.data());
-    const bool ok = status == 0;
-#else
-    pid_t pid = 0;
-    bool ok = posix_spawn(&pid, args[0], nullptr, nullptr, args.data(), environ) == 0;
-    int status = 0;
-    ok = ok && waitpid(pid, &status, 0) == pid && WIFEXITED(status) && WEXITSTATUS(status) == 0;
-#endif
-    const std::chrono::duration<double> took = Clock::now() - start;
-    return ok ? took.count() : -1;
-}
-
-struct Stats {
-    std::vector<double> samples;
-    double min() const { return *std::min_element(samples.begin(), samples.end()); }
-    double max() const { return *std::max_element(samples.begin(), samples.end()); }
-    double median() const {
-        std::vector<double> s = samples;
-        std::sort(s.begin(), s.end());
-        const std::size_t n = s.size();
-        return n % 2 ? s[n / 2] : (s[n / 2 - 1] + s[n / 2]) / 2;
-    }
-};
+using bench::Clock;
+using bench::format;
+using bench::print_row;
+using bench::run;
+using bench::Stats;
 
 // The scene file with RES and OUTPUT replaced; tokens are whitespace-separated and
 // keywords may come in any order (SPEC section 2).
@@ -106,25 +72,14 @@ Variant make_variant(const fs::path& dir, const fs::path& scene, int columns, in
     const std::string name = scene.stem().string();
     const std::string tag = name + "-" + std::to_string(columns) + "x" + std::to_string(rows);
     Variant v{name, dir / (tag + ".txt"), dir / (tag + ".ppm")};
-    std::ofstream(v.scene) << rewrite(scene, columns, rows, v.image);
+    std::ofstream(v.scene) << rewrite(scene, columns, rows, v.image.filename());
     return v;
-}
-
-void print_row(const std::string& name, const Stats& s, const std::string& tail) {
-    std::printf("  %-18s %8.2f %8.2f %8.2f  %s\n", name.c_str(), s.min() * 1e3, s.median() * 1e3,
-                s.max() * 1e3, tail.c_str());
-}
-
-std::string format(const char* f, double x) {
-    char buffer[64];
-    std::snprintf(buffer, sizeof buffer, f, x);
-    return buffer;
 }
 
 int usage() {
     std::fprintf(stderr,
                  "usage: benchmark --raytracer EXE --baseline EXE --floor EXE --course DIR --heavy FILE "
-                 "[--quick] [--runs N]\n");
+                 "[--make-scene EXE] [--povray RENDER_SH] [--quick] [--runs N]\n");
     return 2;
 }
 
@@ -150,16 +105,21 @@ int main(int argc, char** argv) {
     const int runs = opt.count("runs") ? std::max(1, std::atoi(opt["runs"].c_str())) : (quick ? 3 : 11);
 
     std::vector<fs::path> course;
-    const fs::path scenes_dir = fs::path(opt["course"]) / "scenes";
+    const fs::path scenes_dir = fs::absolute(fs::path(opt["course"]) / "scenes");
     if (fs::is_directory(scenes_dir))
         for (const auto& entry : fs::directory_iterator(scenes_dir))
             if (entry.path().extension() == ".txt") course.push_back(entry.path());
     std::sort(course.begin(), course.end());
-    const fs::path heavy = opt["heavy"];
+    const fs::path heavy = fs::absolute(opt["heavy"]);
+    const fs::path povray = opt.count("povray") ? fs::absolute(opt["povray"]) : fs::path();
 
     const fs::path dir = fs::temp_directory_path() /
                          ("raytracer-bench-" + std::to_string(Clock::now().time_since_epoch().count()));
     fs::create_directories(dir);
+    // Scenes name their images relative to the working directory (OUTPUT may not leave
+    // it): every program runs in the scratch folder.
+    const fs::path previous = fs::current_path();
+    fs::current_path(dir);
     bool failed = false;
     auto time_it = [&](const std::vector<std::string>& argv_) {
         const double t = run(argv_);
@@ -199,7 +159,7 @@ int main(int argc, char** argv) {
     std::printf("\n(b) heavy scene at 400x400 against baseline_tracer (target: ratio >= 20)\n");
     const Variant h = make_variant(dir, heavy, 400, 400);
     const Variant hb{h.name, dir / "heavy-baseline.txt", dir / "heavy-baseline.ppm"};
-    std::ofstream(hb.scene) << rewrite(heavy, 400, 400, hb.image);
+    std::ofstream(hb.scene) << rewrite(heavy, 400, 400, hb.image.filename());
     Stats ours, theirs;
     const int heavy_runs = quick ? 1 : std::max(3, runs / 2);
     for (int r = 0; r < heavy_runs; ++r) {
@@ -253,7 +213,14 @@ int main(int argc, char** argv) {
         fs::remove(vb.image, ignored);
     }
 
+    // (d), (e) Scenes far beyond the course's size, against POV-Ray.
+    if (opt.count("make-scene"))
+        scale_table(raytracer, fs::absolute(opt["make-scene"]), povray, quick, failed);
+    else
+        std::printf("\n(d), (e): not run (no --make-scene)\n");
+
     std::error_code ignored;
+    fs::current_path(previous, ignored);
     fs::remove_all(dir, ignored);
     return failed ? 1 : 0;
 }

@@ -1,0 +1,115 @@
+#include "scale_table.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "bench_process.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct ScaleScene {
+    std::string name, kind;  // kind and size as make_scene takes them
+    int size;
+    double embree_ms;  // issue 14's measurement of a renderer on Embree 3 (2 threads), for reference
+};
+
+// Ellipsoids in a scene of make_scene's: a flake of level L has 1 + 9 + ... + 9^L
+// spheres and the floor.
+long ellipsoids(const ScaleScene& s) {
+    if (s.kind == "random") return s.size;
+    long count = 1, level = 1;
+    for (int l = 0; l < s.size; ++l) level *= 9, count += level;
+    return count + 1;
+}
+
+// The scene written by make_scene, a program of its own, so that this process stays
+// small: a child's peak memory as wait4() reports it includes its parent's at the time
+// of the spawn (the memory the child starts with, before exec).
+std::string write_scene(const fs::path& make_scene, const ScaleScene& s, int columns, int rows,
+                        bool& failed) {
+    const std::string file = s.name + (columns == 400 && rows == 400 ? "" : "-small") + ".txt";
+    if (bench::run({make_scene.string(), s.kind, std::to_string(s.size), file, std::to_string(columns),
+                    std::to_string(rows)}) < 0) {
+        std::fprintf(stderr, "benchmark: make_scene could not write %s\n", file.c_str());
+        failed = true;
+    }
+    return file;
+}
+
+// Whether POV-Ray can run here: the script exists and `povray` answers.
+bool have_povray(const fs::path& script) {
+    if (script.empty() || !fs::exists(script)) return false;
+    return bench::run({"/bin/sh", "-c", "command -v povray"}) >= 0;
+}
+
+}  // namespace
+
+void scale_table(const fs::path& raytracer, const fs::path& make_scene, const fs::path& povray, bool quick,
+                 bool& failed) {
+    auto timed = [&](const std::vector<std::string>& argv) {
+        const bench::Run r = bench::run_measured(argv);
+        if (r.seconds < 0) {
+            std::fprintf(stderr, "benchmark: '%s' failed\n", argv.back().c_str());
+            failed = true;
+        }
+        return r;
+    };
+    const std::vector<ScaleScene> scenes{
+        {"flake3", "flake", 3, 50},          {"flake4", "flake", 4, 60},
+        {"flake5", "flake", 5, 147},         {"random1k", "random", 1000, 51},
+        {"random10k", "random", 10000, 120}, {"random100k", "random", 100000, 377}};
+    const bool pov = !quick && have_povray(povray);
+    const int runs = quick ? 1 : 5, pov_runs = 3;
+    std::printf(
+        "\n(d) scale scenes at 400x400, whole process, all cores (target: >= 20x POV-Ray 3.7 on 2 threads, "
+        "and no slower than Embree 3)\n");
+    std::printf("  %-12s %11s %8s %8s %8s %9s %12s %7s %10s\n", "scene", "ellipsoids", "min", "median", "max",
+                "Mrays/s", "POV-Ray", "ratio", "Embree 3*");
+    double random_1k = 0, random_100k = 0;
+    for (const ScaleScene& s : scenes) {
+        const std::string file = write_scene(make_scene, s, 400, 400, failed);
+        bench::Stats ours, theirs;
+        for (int r = 0; r < (pov ? pov_runs : 0); ++r)
+            theirs.samples.push_back(timed({povray.string(), file, s.name + "-pov.ppm", "+WT2"}).seconds);
+        for (int r = 0; r < runs; ++r) ours.samples.push_back(timed({raytracer.string(), file}).seconds);
+        const double median = ours.median();
+        std::printf("  %-12s %11ld %8.1f %8.1f %8.1f %9.2f", s.name.c_str(), ellipsoids(s), ours.min() * 1e3,
+                    median * 1e3, ours.max() * 1e3, 400.0 * 400.0 / median / 1e6);
+        if (pov)
+            std::printf(" %9.1f ms %6.1fx", theirs.median() * 1e3, theirs.median() / median);
+        else
+            std::printf(" %12s %7s", "-", "-");
+        std::printf(" %7.0f ms\n", s.embree_ms);
+        if (s.name == "random1k") random_1k = median;
+        if (s.name == "random100k") random_100k = median;
+    }
+    if (!pov) std::printf("  POV-Ray: %s\n", quick ? "not run in the quick table" : "not on this machine");
+    std::printf("  * issue 14's measurement on this machine kind, not of this run\n");
+    std::printf("  growth t(random100k) / t(random1k): %.1f (target <= 4)\n", random_100k / random_1k);
+
+    std::printf("\n(e) random100k: read and prepared (RES 1 1), and rendered at 400x400 on 64 threads\n");
+    const std::string tiny = write_scene(make_scene, scenes.back(), 1, 1, failed);
+    bench::Stats prepare;
+    double prepare_peak = 0;
+    for (int r = 0; r < (quick ? 3 : 11); ++r) {
+        const bench::Run run = timed({raytracer.string(), tiny});
+        prepare.samples.push_back(run.seconds);
+        prepare_peak = std::max(prepare_peak, run.peak_bytes);
+    }
+    std::printf("  prepare: median %.1f ms (min %.1f), peak %.1f MB (target: 150 ms, 64 MB)\n",
+                prepare.median() * 1e3, prepare.min() * 1e3, prepare_peak / 1e6);
+    const bench::Run wide = timed({raytracer.string(), "--threads", "64", scenes.back().name + ".txt"});
+    std::printf("  64 threads: %.1f ms, peak %.1f MB (target: 512 MB)\n", wide.seconds * 1e3,
+                wide.peak_bytes / 1e6);
+    for (const ScaleScene& s : scenes) {
+        std::error_code ignored;
+        for (const char* end : {".txt", ".ppm", "-pov.ppm", "-small.txt", "-small.ppm"})
+            fs::remove(s.name + end, ignored);
+    }
+}
