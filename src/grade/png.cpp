@@ -1,9 +1,10 @@
 #include "png.h"
 
-#include <algorithm>
 #include <array>
 #include <filesystem>
 #include <fstream>
+
+#include "deflate.h"
 
 namespace grade {
 namespace {
@@ -32,26 +33,14 @@ void put_chunk(std::vector<std::uint8_t>& out, const char* type, const std::vect
     put_u32_big_endian(out, crc32(out.data() + type_at, out.size() - type_at));
 }
 
-// A zlib stream (RFC 1950) of stored deflate blocks (RFC 1951 section 3.2.4), each at most
-// 65535 bytes; the last carries BFINAL.
-std::vector<std::uint8_t> zlib_stored(const std::vector<std::uint8_t>& raw) {
-    constexpr std::size_t kMaxBlock = 65535;
+// A zlib stream (RFC 1950): header, deflate data, Adler-32 of the uncompressed bytes.
+std::vector<std::uint8_t> zlib_stream(const std::vector<std::uint8_t>& raw, std::size_t row_bytes) {
     std::vector<std::uint8_t> out = {0x78, 0x01};  // deflate, 32 KiB window, no dictionary
-    std::size_t at = 0;
-    do {
-        const std::size_t size = std::min(kMaxBlock, raw.size() - at);
-        const bool last = at + size == raw.size();
-        out.push_back(last ? 1 : 0);
-        const auto length = static_cast<std::uint16_t>(size);
-        const auto complement = static_cast<std::uint16_t>(~length);
-        for (const std::uint16_t v : {length, complement}) {
-            out.push_back(static_cast<std::uint8_t>(v & 0xFFU));
-            out.push_back(static_cast<std::uint8_t>(v >> 8U));
-        }
-        out.insert(out.end(), raw.begin() + static_cast<std::ptrdiff_t>(at),
-                   raw.begin() + static_cast<std::ptrdiff_t>(at + size));
-        at += size;
-    } while (at < raw.size());
+    // Matches with the pixel to the left and the one above (rows are filter byte + pixels).
+    std::vector<std::size_t> distances = {3};
+    if (row_bytes <= 32768) distances.push_back(row_bytes);
+    const std::vector<std::uint8_t> compressed = deflate_fixed(raw, distances);
+    out.insert(out.end(), compressed.begin(), compressed.end());
     put_u32_big_endian(out, adler32(raw.data(), raw.size()));
     return out;
 }
@@ -91,7 +80,7 @@ std::vector<std::uint8_t> encode_png(const rt::Image& image) {
 
     std::vector<std::uint8_t> png = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
     put_chunk(png, "IHDR", header);
-    put_chunk(png, "IDAT", zlib_stored(raw));
+    put_chunk(png, "IDAT", zlib_stream(raw, 1 + 3 * width));
     put_chunk(png, "IEND", {});
     return png;
 }

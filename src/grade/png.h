@@ -1,6 +1,5 @@
-// A small PNG encoder (8-bit RGB, no interlace) for the grader's difference pictures.
-// The image data is one zlib stream of stored (uncompressed) deflate blocks: any PNG
-// reader takes it, and the encoder stays a few dozen lines of the standard library.
+// A small PNG encoder (8-bit RGB, no interlace, no row filters) for the grader's
+// difference pictures; the image data is compressed by deflate_fixed() (deflate.h).
 #pragma once
 
 #include <cstddef>
