@@ -8,7 +8,7 @@
 //   pixel64     the key with one pixel off by 64          hang        never ends
 //   segfault    dies by a segmentation fault              exit1       a line on stderr, status 1
 //   wrong_size  the key's top-left half in each direction wrong_name  the image as a.ppm
-//   p3          the key as a text (P3) PPM
+//   p3          the key as a text (P3) PPM                shifted     the key moved one pixel right
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
@@ -98,6 +98,15 @@ unsigned long process_id() {
 #endif
 }
 
+// Each row moved one pixel to the right (its first pixel repeated): every edge is off.
+Image shifted_right(const Image& image) {
+    Image moved = image;
+    const std::size_t row = 3 * static_cast<std::size_t>(image.width);
+    for (std::size_t y = 0; y < static_cast<std::size_t>(image.height); ++y)
+        for (std::size_t i = 3; i < row; ++i) moved.rgb[y * row + i] = image.rgb[y * row + i - 3];
+    return moved;
+}
+
 [[noreturn]] void crash() {
 #ifdef _WIN32
     SetErrorMode(SEM_NOGPFAULTERRORBOX);  // no debugger or dialog under Wine or Windows
@@ -132,6 +141,7 @@ int main(int argc, char** argv) {
     if (mode == "one_level")
         for (std::uint8_t& v : image.rgb) v = static_cast<std::uint8_t>(v == 255 ? 254 : v + 1);
     if (mode == "wrong_size") image = top_left_half(image);
+    if (mode == "shifted") image = shifted_right(image);
     if (mode == "p3")
         write_p3(output, image);
     else

@@ -177,8 +177,8 @@ TEST(flat_and_smooth_images_compress_and_still_decode) {
     // A 600x600 background with a gradient band: matches to the left and above.
     rt::Image image;
     image.width = image.height = 600;
-    image.rgb.assign(600 * 600 * 3, 255);
-    for (std::size_t i = 3 * 600 * 250; i < 3 * 600 * 350; ++i)
+    image.rgb.assign(std::size_t{600} * 600 * 3, 255);
+    for (std::size_t i = std::size_t{3} * 600 * 250; i < std::size_t{3} * 600 * 350; ++i)
         image.rgb[i] = static_cast<std::uint8_t>(i / 3 % 600 / 3);
     const Bytes png = grade::encode_png(image);
     CHECK(png.size() < image.rgb.size() / 20);
