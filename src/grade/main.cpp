@@ -107,7 +107,7 @@ std::vector<grade::SceneResult> grade_all(const std::vector<fs::path>& scenes, c
         grade::SceneResult result = grade::grade_scene(scene, options, scratch);
         if (result.interrupted) break;
         pictures.push_back(write_picture(result, picture_folder(options)));
-        grade::print_scene(result, pictures.back().string());
+        grade::print_scene(result, pictures.back().generic_string());
         result.key = result.got = rt::Image{};  // the pictures are written; free the pixels
         results.push_back(std::move(result));
     }
@@ -147,8 +147,7 @@ int main(int argc, char** argv) {
     } catch (const std::exception& e) {
         std::cerr << "raytracer-grade: error: " << e.what() << "\n";
     }
-    std::error_code ec;
-    fs::remove_all(scratch, ec);
+    grade::remove_folder(scratch);
     if (const int signal = grade::interrupting_signal(); signal != 0) {
         std::cerr << "raytracer-grade: interrupted; the render was stopped and the scratch folder removed\n";
         std::signal(signal, SIG_DFL);

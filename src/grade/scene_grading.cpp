@@ -1,9 +1,11 @@
 #include "scene_grading.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <system_error>
+#include <thread>
 
 #include "child_process.h"
 #include "raytracer/parser.h"
@@ -99,6 +101,17 @@ void note_if_slow(SceneResult& result) {
 
 }  // namespace
 
+void remove_folder(const fs::path& folder) {
+    // On Windows a file can stay locked for a moment after its program ended (a virus
+    // scanner, Wine's debugger after a crash): a few tries, then it is left for the end.
+    std::error_code ec;
+    for (int attempt = 0; attempt < 25; ++attempt) {
+        fs::remove_all(folder, ec);
+        if (!ec) return;
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+}
+
 fs::path key_for(const fs::path& keys, const fs::path& scene) {
     const std::string stem = scene.stem().string();
     if (stem.rfind("test", 0) == 0) return keys / ("key" + stem.substr(4) + ".ppm");
@@ -121,8 +134,10 @@ SceneResult grade_scene(const fs::path& scene, const Options& options, const fs:
         result.problem = "no usable key: " + error;
         return result;
     }
-    const fs::path folder = scratch / "run";
-    fs::remove_all(folder);
+    // A folder of the scene's own: one that a crashed program's files keep from removal
+    // cannot leave files in the next scene's folder.
+    const fs::path folder = scratch / ("run-" + result.name);
+    remove_folder(folder);
     fs::create_directories(folder);
     const ChildCommand command{options.raytracer,      {scene.string()},       folder,
                                scratch / "stdout.txt", scratch / "stderr.txt", options.timeout_seconds};
@@ -140,7 +155,7 @@ SceneResult grade_scene(const fs::path& scene, const Options& options, const fs:
                          std::to_string(result.key.width) + "x" + std::to_string(result.key.height);
     if (result.problem.empty()) result.judgement = judge(result.key_name, result.key, result.got);
     if (run.end == ChildOutcome::End::exited) note_if_slow(result);
-    fs::remove_all(folder);
+    remove_folder(folder);
     return result;
 }
 

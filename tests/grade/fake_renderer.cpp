@@ -107,9 +107,16 @@ Image shifted_right(const Image& image) {
     return moved;
 }
 
+#ifdef _WIN32
+// Ends the process with the exception's code, as Windows does without a debugger: Wine
+// would otherwise start winedbg on the crash (it ignores SEM_NOGPFAULTERRORBOX).
+LONG WINAPI end_with_exception_code(EXCEPTION_POINTERS* /*exception*/) { return EXCEPTION_EXECUTE_HANDLER; }
+#endif
+
 [[noreturn]] void crash() {
 #ifdef _WIN32
-    SetErrorMode(SEM_NOGPFAULTERRORBOX);  // no debugger or dialog under Wine or Windows
+    SetErrorMode(SEM_NOGPFAULTERRORBOX);
+    SetUnhandledExceptionFilter(end_with_exception_code);
 #endif
     volatile int* volatile nowhere = nullptr;
     *nowhere = 1;  // NOLINT(clang-analyzer-core.NullDereference): the crash is the point
