@@ -1,0 +1,58 @@
+#include "ambiguous_pixels.h"
+
+namespace grade {
+namespace {
+
+// Found with exact rational arithmetic over every eye ray of the 12 course scenes (the
+// scene numbers are decimals, so each ray and ellipsoid is exact in fractions): a ray is
+// tangent when the discriminant of its unit-sphere quadratic is exactly zero, in front of
+// the eye; it meets the rim when its point at t = 1 lies exactly on the surface. Both are
+// decided by the last bit in floating point. SPEC section 7 names keyShadow's (400, 150),
+// (400, 225), (450, 200) and keyIllum's (240, 345), (360, 345) among them.
+constexpr const char* kTangentToS1 = "the eye ray is exactly tangent to s1: hit or miss by the last bit";
+constexpr const char* kTangentToS3 = "the eye ray is exactly tangent to s3: hit or miss by the last bit";
+constexpr const char* kRimOfS1 = "the eye ray meets s1 exactly where the near plane cuts it (t = 1)";
+constexpr const char* kRimOfS4 = "the eye ray meets s4 exactly where the near plane cuts it (t = 1)";
+
+}  // namespace
+
+const std::vector<AmbiguousPixel>& ambiguous_pixels() {
+    static const std::vector<AmbiguousPixel> table = {
+        {"keyAmbient", 180, 300, kTangentToS3},  {"keyDiffuse", 228, 204, kTangentToS3},
+        {"keyDiffuse", 180, 300, kTangentToS3},  {"keyIllum", 180, 300, kTangentToS3},
+        {"keyIllum", 300, 225, kRimOfS4},        {"keyIllum", 279, 228, kRimOfS4},
+        {"keyIllum", 321, 228, kRimOfS4},        {"keyIllum", 255, 240, kRimOfS4},
+        {"keyIllum", 345, 240, kRimOfS4},        {"keyIllum", 240, 255, kRimOfS4},
+        {"keyIllum", 360, 255, kRimOfS4},        {"keyIllum", 228, 279, kRimOfS4},
+        {"keyIllum", 372, 279, kRimOfS4},        {"keyIllum", 225, 300, kRimOfS4},
+        {"keyIllum", 375, 300, kRimOfS4},        {"keyIllum", 228, 321, kRimOfS4},
+        {"keyIllum", 372, 321, kRimOfS4},        {"keyIllum", 240, 345, kRimOfS4},
+        {"keyIllum", 360, 345, kRimOfS4},        {"keyIllum", 255, 360, kRimOfS4},
+        {"keyIllum", 345, 360, kRimOfS4},        {"keyIllum", 279, 372, kRimOfS4},
+        {"keyIllum", 321, 372, kRimOfS4},        {"keyIllum", 300, 375, kRimOfS4},
+        {"keyImgPlane", 300, 150, kRimOfS1},     {"keyImgPlane", 258, 156, kRimOfS1},
+        {"keyImgPlane", 342, 156, kRimOfS1},     {"keyImgPlane", 210, 180, kRimOfS1},
+        {"keyImgPlane", 390, 180, kRimOfS1},     {"keyImgPlane", 180, 210, kRimOfS1},
+        {"keyImgPlane", 420, 210, kRimOfS1},     {"keyImgPlane", 156, 258, kRimOfS1},
+        {"keyImgPlane", 444, 258, kRimOfS1},     {"keyImgPlane", 150, 300, kRimOfS1},
+        {"keyImgPlane", 450, 300, kRimOfS1},     {"keyImgPlane", 156, 342, kRimOfS1},
+        {"keyImgPlane", 444, 342, kRimOfS1},     {"keyImgPlane", 180, 390, kRimOfS1},
+        {"keyImgPlane", 420, 390, kRimOfS1},     {"keyImgPlane", 210, 420, kRimOfS1},
+        {"keyImgPlane", 390, 420, kRimOfS1},     {"keyImgPlane", 258, 444, kRimOfS1},
+        {"keyImgPlane", 342, 444, kRimOfS1},     {"keyImgPlane", 300, 450, kRimOfS1},
+        {"keyParsing", 180, 300, kTangentToS3},  {"keySample", 180, 300, kTangentToS3},
+        {"keyShadow", 400, 150, kTangentToS1},   {"keyShadow", 375, 200, kTangentToS1},
+        {"keyShadow", 450, 200, kTangentToS1},   {"keyShadow", 400, 225, kTangentToS1},
+        {"keySpecular", 228, 204, kTangentToS3}, {"keySpecular", 180, 300, kTangentToS3},
+    };
+    return table;
+}
+
+std::vector<AmbiguousPixel> ambiguous_pixels_of(const std::string& key) {
+    std::vector<AmbiguousPixel> of_key;
+    for (const AmbiguousPixel& pixel : ambiguous_pixels())
+        if (key == pixel.key) of_key.push_back(pixel);
+    return of_key;
+}
+
+}  // namespace grade

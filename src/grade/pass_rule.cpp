@@ -1,0 +1,59 @@
+#include "pass_rule.h"
+
+#include <algorithm>
+#include <cstdlib>
+
+#include "ambiguous_pixels.h"
+
+namespace grade {
+
+void Box::add(int x, int y) {
+    if (empty()) {
+        left = right = x;
+        top = bottom = y;
+        return;
+    }
+    left = std::min(left, x);
+    right = std::max(right, x);
+    top = std::min(top, y);
+    bottom = std::max(bottom, y);
+}
+
+Judgement judge(const std::string& key_name, const rt::Image& key, const rt::Image& got) {
+    Judgement j;
+    const std::vector<AmbiguousPixel> ambiguous = ambiguous_pixels_of(key_name);
+    for (int y = 0; y < key.height; ++y) {
+        for (int x = 0; x < key.width; ++x) {
+            const std::size_t at = 3 * (static_cast<std::size_t>(y) * static_cast<std::size_t>(key.width) +
+                                        static_cast<std::size_t>(x));
+            int largest = 0;
+            for (std::size_t k = at; k < at + 3; ++k)
+                largest = std::max(largest, std::abs(key.rgb[k] - got.rgb[k]));
+            if (largest == 0) continue;
+            ++j.differing;
+            j.largest_difference = std::max(j.largest_difference, largest);
+            if (largest <= 1) {
+                ++j.truncation_steps;
+            } else if (std::any_of(ambiguous.begin(), ambiguous.end(),
+                                   [&](const AmbiguousPixel& p) { return p.x == x && p.y == y; })) {
+                ++j.ambiguous;
+            } else {
+                ++j.unexplained;
+                j.unexplained_box.add(x, y);
+                if (j.first_unexplained.size() < Judgement::kShown) {
+                    PixelDifference d;
+                    d.x = x;
+                    d.y = y;
+                    for (std::size_t c = 0; c < 3; ++c) {
+                        d.key[c] = key.rgb[at + c];
+                        d.got[c] = got.rgb[at + c];
+                    }
+                    j.first_unexplained.push_back(d);
+                }
+            }
+        }
+    }
+    return j;
+}
+
+}  // namespace grade

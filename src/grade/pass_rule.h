@@ -1,0 +1,42 @@
+// The pass rule of SPEC section 7, per scene: every pixel that differs from the key must be
+// explainable, either as a truncation step (each channel off by at most one level) or as
+// one of the key's known ambiguous pixels (ambiguous_pixels.h). Anything else fails.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "raytracer/image.h"
+
+namespace grade {
+
+struct PixelDifference {
+    int x = 0, y = 0;  // column, row from the top
+    std::uint8_t key[3] = {0, 0, 0};
+    std::uint8_t got[3] = {0, 0, 0};
+};
+
+struct Box {
+    int left = 0, top = 0, right = -1, bottom = -1;  // inclusive; empty when right < left
+    bool empty() const { return right < left; }
+    void add(int x, int y);
+};
+
+struct Judgement {
+    long long differing = 0;                         // pixels with any channel different
+    long long truncation_steps = 0;                  // of those, off by at most one level in each channel
+    long long ambiguous = 0;                         // of those, known ambiguous pixels of the key
+    long long unexplained = 0;                       // the rest: each fails the scene
+    int largest_difference = 0;                      // in levels, over all differing pixels
+    Box unexplained_box;                             // where the unexplained pixels lie
+    std::vector<PixelDifference> first_unexplained;  // in reading order, at most kShown
+    bool passed() const { return unexplained == 0; }
+    static constexpr std::size_t kShown = 5;
+};
+
+// Compares an image with its key of the same size; key_name is the key's file stem
+// ("keyShadow"), which selects its ambiguous pixels.
+Judgement judge(const std::string& key_name, const rt::Image& key, const rt::Image& got);
+
+}  // namespace grade

@@ -1,0 +1,81 @@
+#include "report.h"
+
+#include <cstdio>
+
+namespace grade {
+namespace {
+
+std::string plural(long long count, const char* one, const char* many) {
+    return std::to_string(count) + " " + (count == 1 ? one : many);
+}
+
+std::string rgb(const std::uint8_t (&c)[3]) {
+    return std::to_string(c[0]) + " " + std::to_string(c[1]) + " " + std::to_string(c[2]);
+}
+
+}  // namespace
+
+void print_header() {
+    std::printf("%-20s %9s %11s %8s  %-6s %s\n", "scene", "differing", "unexplained", "time s", "result",
+                "marks");
+}
+
+std::string describe_differences(const Judgement& j) {
+    if (j.differing == 0) return "identical to the key";
+    std::string text = plural(j.differing, "pixel differs", "pixels differ") + " from the key";
+    if (j.truncation_steps > 0) text += "; " + std::to_string(j.truncation_steps) + " by one level (allowed)";
+    if (j.ambiguous > 0) text += "; " + std::to_string(j.ambiguous) + " known ambiguous (allowed)";
+    if (j.unexplained > 0) text += "; " + std::to_string(j.unexplained) + " unexplained";
+    return text;
+}
+
+void print_scene(const SceneResult& r, const std::string& picture) {
+    const int marks = r.passed() ? kMarksPerScene : 0;
+    const char* result = r.passed() ? "pass" : "FAIL";
+    if (!r.problem.empty()) {
+        std::printf("%-20s %9s %11s %8.3f  %-6s %d/%d  %s\n", r.name.c_str(), "-", "-", r.seconds, result,
+                    marks, kMarksPerScene, r.problem.c_str());
+    } else {
+        std::printf("%-20s %9lld %11lld %8.3f  %-6s %d/%d\n", r.name.c_str(), r.judgement.differing,
+                    r.judgement.unexplained, r.seconds, result, marks, kMarksPerScene);
+    }
+    for (const std::string& note : r.notes) std::printf("    note: %s\n", note.c_str());
+    if (r.problem.empty() && !r.judgement.passed()) {
+        const Judgement& j = r.judgement;
+        const Box& b = j.unexplained_box;
+        std::printf("    %s, largest %d levels\n", describe_differences(j).c_str(), j.largest_difference);
+        std::printf("    the unexplained pixels lie in x %d..%d, y %d..%d (column, row from the top-left)\n",
+                    b.left, b.right, b.top, b.bottom);
+        for (const PixelDifference& d : j.first_unexplained)
+            std::printf("    (%d, %d): key %s, got %s\n", d.x, d.y, rgb(d.key).c_str(), rgb(d.got).c_str());
+        if (j.unexplained > static_cast<long long>(j.first_unexplained.size()))
+            std::printf("    ... and %lld more\n",
+                        j.unexplained - static_cast<long long>(j.first_unexplained.size()));
+    }
+    if (!picture.empty()) std::printf("    picture (key | yours | difference): %s\n", picture.c_str());
+    std::fflush(stdout);
+}
+
+std::string print_summary(const std::vector<SceneResult>& results) {
+    long long passed = 0, not_rendered = 0;
+    for (const SceneResult& r : results) {
+        passed += r.passed() ? 1 : 0;
+        not_rendered += r.problem.empty() ? 0 : 1;
+    }
+    const long long scenes = static_cast<long long>(results.size());
+    std::string line = "marks " + std::to_string(kMarksPerScene * passed) + "/" +
+                       std::to_string(kMarksPerScene * scenes) + ": ";
+    if (passed == scenes) {
+        line += scenes == 1 ? "the scene passes" : "all " + std::to_string(scenes) + " scenes pass";
+    } else {
+        line += std::to_string(passed) + " of " + plural(scenes, "scene passes", "scenes pass");
+        if (not_rendered > 0) line += "; " + std::to_string(not_rendered) + " gave no image to compare";
+        if (scenes - passed - not_rendered > 0)
+            line += "; " + plural(scenes - passed - not_rendered, "differs", "differ") + " beyond the rule";
+    }
+    line += passed == scenes ? ": PASS" : ": FAIL";
+    std::printf("%s\n", line.c_str());
+    return line;
+}
+
+}  // namespace grade

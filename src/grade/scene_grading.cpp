@@ -1,0 +1,162 @@
+#include "scene_grading.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <system_error>
+#include <thread>
+
+#include "child_process.h"
+#include "raytracer/parser.h"
+#include "raytracer/ppm.h"
+
+namespace fs = std::filesystem;
+
+namespace grade {
+namespace {
+
+std::string first_line_of(const fs::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    std::string line;
+    while (std::getline(in, line)) {
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        if (!line.empty()) return line.size() > 200 ? line.substr(0, 200) + "..." : line;
+    }
+    return {};
+}
+
+std::string format_seconds(double seconds) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3g s", seconds);
+    return text;
+}
+
+// What a run that did not exit with status 0 did, in the student's words.
+std::string describe_failed_run(const ChildOutcome& run, const Options& options,
+                                const fs::path& stderr_file) {
+    using End = ChildOutcome::End;
+    const std::string said = first_line_of(stderr_file);
+    switch (run.end) {
+        case End::not_started:
+            return "could not start " + options.raytracer.string() + ": " + run.why_not_started;
+        case End::timed_out:
+            return "still running after " + format_seconds(options.timeout_seconds) + " (--timeout): killed";
+        case End::interrupted:
+            return "interrupted: the grader was stopped";
+        case End::killed_by_signal:
+            return "killed by " + signal_name(run.code) + (said.empty() ? "" : ": " + said);
+        case End::exited:
+            break;
+    }
+    const std::string crash = windows_crash_name(static_cast<unsigned long>(static_cast<unsigned>(run.code)));
+    if (!crash.empty()) return "crashed with " + crash + (said.empty() ? "" : ": " + said);
+    return "exited with status " + std::to_string(run.code) +
+           (said.empty() ? " and said nothing on stderr" : ": " + said);
+}
+
+// The files a run left in its folder, for the student who named the output wrongly.
+std::string files_in(const fs::path& folder) {
+    std::vector<std::string> names;
+    std::error_code ec;
+    for (auto it = fs::recursive_directory_iterator(folder, ec);
+         !ec && it != fs::recursive_directory_iterator(); it.increment(ec))
+        if (it->is_regular_file(ec)) names.push_back(fs::relative(it->path(), folder, ec).generic_string());
+    std::sort(names.begin(), names.end());
+    if (names.empty()) return "it wrote no file at all";
+    std::string list = "it wrote: ";
+    for (std::size_t i = 0; i < names.size() && i < 10; ++i) list += (i ? ", " : "") + names[i];
+    if (names.size() > 10) list += ", and " + std::to_string(names.size() - 10) + " more";
+    return list;
+}
+
+// Reads the image the run wrote; returns why not, for the student.
+std::string read_output(const fs::path& folder, const std::string& output_name, rt::Image& image) {
+    const fs::path output = folder / fs::u8path(output_name);
+    std::error_code ec;
+    if (!fs::is_regular_file(output, ec))
+        return "wrote nothing named " + output_name + " (OUTPUT of the scene); " + files_in(folder);
+    char magic[2] = {0, 0};
+    std::ifstream(output, std::ios::binary).read(magic, 2);
+    if (magic[0] == 'P' && magic[1] == '3') return "P3 written; the course requires P6";
+    std::string error;
+    if (!rt::read_ppm(output.string(), image, error)) {
+        const std::size_t at = error.find(output.string());
+        if (at != std::string::npos) error.replace(at, output.string().size(), output_name);
+        return error;
+    }
+    return {};
+}
+
+// The handout asks for 5 s at 400x400 in Release; larger images get proportionally longer.
+void note_if_slow(SceneResult& result) {
+    const double pixels = static_cast<double>(result.key.width) * result.key.height;
+    const double allowed = 5.0 * std::max(1.0, pixels / (400.0 * 400.0));
+    if (result.seconds > allowed)
+        result.notes.push_back("took " + format_seconds(result.seconds) +
+                               ", over the handout's 5 s for 400x400 (" + format_seconds(allowed) + " at " +
+                               std::to_string(result.key.width) + "x" + std::to_string(result.key.height) +
+                               ")");
+}
+
+}  // namespace
+
+void remove_folder(const fs::path& folder) {
+    // On Windows a file can stay locked for a moment after its program ended (a virus
+    // scanner, Wine's debugger after a crash): a few tries, then it is left for the end.
+    std::error_code ec;
+    for (int attempt = 0; attempt < 25; ++attempt) {
+        fs::remove_all(folder, ec);
+        if (!ec) return;
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+}
+
+fs::path key_for(const fs::path& keys, const fs::path& scene) {
+    const std::string stem = scene.stem().string();
+    if (stem.rfind("test", 0) == 0) return keys / ("key" + stem.substr(4) + ".ppm");
+    return keys / (stem + ".ppm");
+}
+
+SceneResult grade_scene(const fs::path& scene, const Options& options, const fs::path& scratch) {
+    SceneResult result;
+    result.name = scene.stem().string();
+    const fs::path key_file = key_for(options.keys, scene);
+    result.key_name = key_file.stem().string();
+    std::string output_name, error;
+    try {
+        output_name = rt::load_scene(scene.string()).output;
+    } catch (const std::exception& e) {
+        result.problem = std::string("the scene itself cannot be read: ") + e.what();
+        return result;
+    }
+    if (!rt::read_ppm(key_file.string(), result.key, error)) {
+        result.problem = "no usable key: " + error;
+        return result;
+    }
+    // A folder of the scene's own: one that a crashed program's files keep from removal
+    // cannot leave files in the next scene's folder.
+    const fs::path folder = scratch / ("run-" + result.name);
+    remove_folder(folder);
+    fs::create_directories(folder);
+    const ChildCommand command{options.raytracer,      {scene.string()},       folder,
+                               scratch / "stdout.txt", scratch / "stderr.txt", options.timeout_seconds};
+    const ChildOutcome run = run_child(command);
+    result.seconds = run.seconds;
+    result.interrupted = run.end == ChildOutcome::End::interrupted || interrupting_signal() != 0;
+    if (run.end != ChildOutcome::End::exited || run.code != 0)
+        result.problem = describe_failed_run(run, options, command.stderr_file);
+    else
+        result.problem = read_output(folder, output_name, result.got);
+    if (result.problem.empty() &&
+        (result.got.width != result.key.width || result.got.height != result.key.height))
+        result.problem = "wrote " + std::to_string(result.got.width) + "x" +
+                         std::to_string(result.got.height) + ", the key is " +
+                         std::to_string(result.key.width) + "x" + std::to_string(result.key.height);
+    if (result.problem.empty()) result.judgement = judge(result.key_name, result.key, result.got);
+    if (run.end == ChildOutcome::End::exited) note_if_slow(result);
+    remove_folder(folder);
+    return result;
+}
+
+}  // namespace grade

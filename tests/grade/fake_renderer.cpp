@@ -1,0 +1,157 @@
+// A fake "student" renderer for the grader's tests, one executable per FAKE_MODE: it reads
+// the scene's OUTPUT and the scene's key (../keys beside the scene folder) and writes the
+// key with one kind of mistake, or misbehaves as a broken program does. Standard library
+// only, and not built with the sanitizers: a sanitizer would turn the crash into its own
+// report and exit status.
+//
+//   black       a black image of the key's size          one_level   every channel one level off
+//   pixel64     the key with one pixel off by 64          hang        never ends
+//   segfault    dies by a segmentation fault              exit1       a line on stderr, status 1
+//   wrong_size  the key's top-left half in each direction wrong_name  the image as a.ppm
+//   p3          the key as a text (P3) PPM                shifted     the key moved one pixel right
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <iterator>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#ifdef _WIN32
+#include <windows.h>
+#else
+#include <unistd.h>
+#endif
+
+#ifndef FAKE_MODE
+#error "FAKE_MODE must name the mistake"
+#endif
+
+namespace {
+
+struct Image {
+    int width = 0, height = 0;
+    std::vector<std::uint8_t> rgb;
+};
+
+std::string scene_output(const std::string& scene) {
+    std::ifstream in(scene);
+    std::string keyword, value, line;
+    while (std::getline(in, line)) {
+        std::istringstream fields(line);
+        if (fields >> keyword >> value && keyword == "OUTPUT") return value;
+    }
+    return "out.ppm";
+}
+
+Image read_key(const std::string& scene) {
+    const std::size_t slash = scene.find_last_of("/\\");
+    const std::string folder = scene.substr(0, slash), file = scene.substr(slash + 1);
+    const std::string key = folder + "/../keys/key" + file.substr(4, file.size() - 8) + ".ppm";
+    std::ifstream in(key, std::ios::binary);
+    std::string magic;
+    int maxval = 0;
+    Image image;
+    in >> magic >> image.width >> image.height >> maxval;
+    in.get();
+    image.rgb.resize(static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) * 3);
+    in.read(reinterpret_cast<char*>(image.rgb.data()), static_cast<std::streamsize>(image.rgb.size()));
+    if (!in) {
+        std::cerr << "fake: cannot read the key " << key << "\n";
+        std::exit(9);
+    }
+    return image;
+}
+
+void write_p6(const std::string& name, const Image& image) {
+    std::ofstream out(name, std::ios::binary);
+    out << "P6\n" << image.width << " " << image.height << "\n255\n";
+    out.write(reinterpret_cast<const char*>(image.rgb.data()),
+              static_cast<std::streamsize>(image.rgb.size()));
+}
+
+void write_p3(const std::string& name, const Image& image) {
+    std::ofstream out(name);
+    out << "P3\n" << image.width << " " << image.height << "\n255\n";
+    for (const std::uint8_t v : image.rgb) out << int{v} << "\n";
+}
+
+Image top_left_half(const Image& image) {
+    Image half;
+    half.width = image.width / 2;
+    half.height = image.height / 2;
+    for (int y = 0; y < half.height; ++y)
+        for (int x = 0; x < 3 * half.width; ++x)
+            half.rgb.push_back(image.rgb[static_cast<std::size_t>(y) * 3 * image.width + x]);
+    return half;
+}
+
+unsigned long process_id() {
+#ifdef _WIN32
+    return GetCurrentProcessId();
+#else
+    return static_cast<unsigned long>(getpid());
+#endif
+}
+
+// Each row moved one pixel to the right (its first pixel repeated): every edge is off.
+Image shifted_right(const Image& image) {
+    Image moved = image;
+    const std::size_t row = 3 * static_cast<std::size_t>(image.width);
+    for (std::size_t y = 0; y < static_cast<std::size_t>(image.height); ++y)
+        for (std::size_t i = 3; i < row; ++i) moved.rgb[y * row + i] = image.rgb[y * row + i - 3];
+    return moved;
+}
+
+#ifdef _WIN32
+// Ends the process with the exception's code, as Windows does without a debugger: Wine
+// would otherwise start winedbg on the crash (it ignores SEM_NOGPFAULTERRORBOX).
+LONG WINAPI end_with_exception_code(EXCEPTION_POINTERS* /*exception*/) { return EXCEPTION_EXECUTE_HANDLER; }
+#endif
+
+[[noreturn]] void crash() {
+#ifdef _WIN32
+    SetErrorMode(SEM_NOGPFAULTERRORBOX);
+    SetUnhandledExceptionFilter(end_with_exception_code);
+#endif
+    volatile int* volatile nowhere = nullptr;
+    *nowhere = 1;  // NOLINT(clang-analyzer-core.NullDereference): the crash is the point
+    std::abort();  // not reached
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    const std::string mode = FAKE_MODE;
+    if (argc != 2) return 2;
+    if (mode == "hang") {
+        if (const char* pid_file = std::getenv("FAKE_RENDERER_PID_FILE"))
+            std::ofstream(pid_file) << process_id() << "\n";
+        for (;;) std::this_thread::sleep_for(std::chrono::seconds(1));
+    }
+    if (mode == "segfault") crash();
+    if (mode == "exit1") {
+        std::cerr << "fake: error: cannot open the scene file\nsecond line\n";
+        return 1;
+    }
+    const std::string output = scene_output(argv[1]);
+    Image image = read_key(argv[1]);
+    if (mode == "black") image.rgb.assign(image.rgb.size(), 0);
+    if (mode == "pixel64") {
+        std::uint8_t& red = image.rgb[3 * (static_cast<std::size_t>(image.width) * 200 + 300)];
+        red = static_cast<std::uint8_t>(red >= 64 ? red - 64 : red + 64);  // pixel (300, 200)
+    }
+    if (mode == "one_level")
+        for (std::uint8_t& v : image.rgb) v = static_cast<std::uint8_t>(v == 255 ? 254 : v + 1);
+    if (mode == "wrong_size") image = top_left_half(image);
+    if (mode == "shifted") image = shifted_right(image);
+    if (mode == "p3")
+        write_p3(output, image);
+    else
+        write_p6(mode == "wrong_name" ? "a.ppm" : output, image);
+    return 0;
+}

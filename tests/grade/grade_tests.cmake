@@ -1,0 +1,70 @@
+# Included by tests/CMakeLists.txt (so that the Wine block there covers these tests too).
+# The programs are built always (clang-tidy reads every source); the tests need the course
+# scenes and keys, as the golden tests do, and are left out where those are absent.
+set(fake_modes black pixel64 one_level hang segfault exit1 wrong_size wrong_name p3 shifted)
+foreach(mode ${fake_modes})
+  add_executable(fake_${mode} grade/fake_renderer.cpp)
+  target_compile_definitions(fake_${mode} PRIVATE FAKE_MODE="${mode}")
+  if(NOT MSVC)
+    # The warnings of raytracer_warnings, not its sanitizers (fake_renderer.cpp says why).
+    target_compile_options(fake_${mode} PRIVATE -Wall -Wextra -Wpedantic
+                           $<$<BOOL:${RAYTRACER_WARNINGS_AS_ERRORS}>:-Werror>)
+  endif()
+endforeach()
+if(NOT WIN32)
+  add_executable(grade_interrupt grade/interrupt.cpp check_main.cpp)
+  target_link_libraries(grade_interrupt PRIVATE raytracer_warnings)
+  target_compile_definitions(grade_interrupt PRIVATE RAYTRACER_GRADE="$<TARGET_FILE:raytracer-grade>"
+                             FAKE_HANG="$<TARGET_FILE:fake_hang>" COURSE_SCENES="${course_scene_dir}")
+endif()
+if(NOT EXISTS "${course_scene_dir}/testShadow.txt")
+  return()
+endif()
+
+set(grade_out "${CMAKE_CURRENT_BINARY_DIR}/grade-out")
+# grade_test(NAME MODE STATUS EXPECT [ARGS ...]): EXPECT is a '|'-separated list of texts.
+function(grade_test name mode status expect)
+  list(JOIN ARGN "|" args)
+  add_test(NAME grade.${name}
+           COMMAND ${CMAKE_COMMAND} -DGRADER=$<TARGET_FILE:raytracer-grade> "-DEMULATOR=${CMAKE_CROSSCOMPILING_EMULATOR}"
+                   "-DARGS=--raytracer|$<TARGET_FILE:fake_${mode}>|${args}|${course_scene_dir}" -DSTATUS=${status}
+                   "-DEXPECT=${expect}" "-DREJECT=total: 0 differing|${GRADE_REJECT}" ${GRADE_EXTRA}
+                   -P ${CMAKE_CURRENT_SOURCE_DIR}/grade/expect.cmake)
+  set_tests_properties(grade.${name} PROPERTIES TIMEOUT 120)
+endfunction()
+
+if(WIN32)
+  set(segfault_message "crashed with an access violation (0xC0000005, like SIGSEGV)")
+else()
+  set(segfault_message "killed by SIGSEGV")
+endif()
+grade_test(black black 1 "testShadow|FAIL   0/2|359998 pixels differ from the key; 8 by one level (allowed); 2 known ambiguous (allowed); 359988 unexplained, largest 255 levels|the unexplained pixels lie in x 0..599, y 0..599|(0, 0): key 255 255 255, got 0 0 0|(4, 0): key 255 255 255, got 0 0 0|... and 359983 more|marks 0/2: 0 of 1 scene passes; 1 differs beyond the rule: FAIL" --only testShadow)
+grade_test(pixel64 pixel64 1 "1 pixel differs from the key; 1 unexplained, largest 64 levels|the unexplained pixels lie in x 300..300, y 200..200|(300, 200): key 44 0 0, got 108 0 0|marks 0/2" --only testIllum)
+grade_test(one-level one_level 0 "testShadow              360000           0|marks 24/24: all 12 scenes pass: PASS")
+grade_test(hang hang 1 "still running after 1 s (--timeout): killed|marks 0/2" --timeout 1 --only testAmbient)
+grade_test(segfault segfault 1 "testSample|${segfault_message}|marks 0/24: 0 of 12 scenes pass; 12 gave no image to compare: FAIL")
+grade_test(exit1 exit1 1 "exited with status 1: fake: error: cannot open the scene file|marks 0/2" --only testParsing)
+grade_test(wrong-size wrong_size 1 "wrote 300x300, the key is 600x600|marks 0/2" --only testDiffuse)
+grade_test(wrong-name wrong_name 1 "wrote nothing named testSample.ppm (OUTPUT of the scene); it wrote: a.ppm|marks 0/2" --only testSample)
+grade_test(shifted shifted 1 "19950 pixels differ from the key; 8620 by one level (allowed); 4 known ambiguous (allowed); 11326 unexplained|the unexplained pixels lie in x 149..455, y 146..451|(412, 146): key 64 0 0, got 255 255 255" --only testShadow)
+grade_test(p3 p3 1 "P3 written; the course requires P6|marks 0/2" --only testBehind)
+
+# The pictures: --diff-dir writes one PNG per failing scene, --html one page showing them.
+set(GRADE_EXTRA -DCLEAN=${grade_out}/html "-DFILES=${grade_out}/html/diffs/testIllum.png"
+                -DPAGE=${grade_out}/html/grade.html
+                "-DPAGE_EXPECT=<img src=\"diffs/testIllum.png\"|(300, 200): key 44 0 0, got 108 0 0|<td>FAIL</td>")
+grade_test(html pixel64 1 "picture (key | yours | difference): ${grade_out}/html/diffs/testIllum.png|page: ${grade_out}/html/grade.html"
+           --only testIllum --diff-dir ${grade_out}/html/diffs --html ${grade_out}/html/grade.html)
+set(GRADE_EXTRA -DCLEAN=${grade_out}/html-alone "-DFILES=${grade_out}/html-alone/marks-pictures/testShadow.png"
+                -DPAGE=${grade_out}/html-alone/marks.html "-DPAGE_EXPECT=<img src=\"marks-pictures/testShadow.png\"")
+grade_test(html-alone black 1 "marks 0/2" --only testShadow --html ${grade_out}/html-alone/marks.html)
+unset(GRADE_EXTRA)
+
+grade_test(help one_level 0 "usage: raytracer-grade [--raytracer EXE]|every channel is off by at most one level|ambiguous pixels" --help)
+grade_test(bad-timeout one_level 2 "--timeout 'soon' is not a number of seconds" --timeout soon)
+
+# Interrupting the grader while a render hangs (POSIX signals; on Windows, Ctrl-C is not
+# sent to a program under Wine by CTest).
+if(NOT WIN32)
+  add_test(NAME grade.interrupt COMMAND grade_interrupt)
+endif()

@@ -1,0 +1,77 @@
+// The pass rule of SPEC section 7: which differing pixels a scene may have, and what the
+// grader reports about the others.
+#include <cstdint>
+#include <string>
+
+#include "../check.h"
+#include "ambiguous_pixels.h"
+#include "pass_rule.h"
+
+namespace {
+
+rt::Image grey(int width, int height, std::uint8_t level) {
+    rt::Image image;
+    image.width = width;
+    image.height = height;
+    image.rgb.assign(3 * static_cast<std::size_t>(width) * static_cast<std::size_t>(height), level);
+    return image;
+}
+
+void set(rt::Image& image, int x, int y, int channel, std::uint8_t value) {
+    image.rgb[3 * (static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width) + x) + channel] =
+        value;
+}
+
+}  // namespace
+
+TEST(identical_images_pass) {
+    const grade::Judgement j = grade::judge("keyShadow", grey(8, 8, 9), grey(8, 8, 9));
+    CHECK(j.passed() && j.differing == 0);
+}
+
+TEST(one_level_in_every_channel_everywhere_passes) {
+    const grade::Judgement j = grade::judge("keyShadow", grey(6, 5, 100), grey(6, 5, 101));
+    CHECK(j.passed() && j.differing == 30 && j.truncation_steps == 30);
+}
+
+TEST(two_levels_in_one_channel_of_one_pixel_fails_and_is_located) {
+    rt::Image got = grey(10, 10, 50);
+    set(got, 7, 3, 2, 52);
+    set(got, 2, 5, 0, 51);  // allowed
+    const grade::Judgement j = grade::judge("keyShadow", grey(10, 10, 50), got);
+    CHECK(!j.passed());
+    CHECK(j.differing == 2 && j.truncation_steps == 1 && j.unexplained == 1 && j.largest_difference == 2);
+    CHECK(j.unexplained_box.left == 7 && j.unexplained_box.right == 7);
+    CHECK(j.unexplained_box.top == 3 && j.unexplained_box.bottom == 3);
+    CHECK(j.first_unexplained.size() == 1 && j.first_unexplained[0].x == 7 && j.first_unexplained[0].y == 3);
+    CHECK(j.first_unexplained[0].key[2] == 50 && j.first_unexplained[0].got[2] == 52);
+}
+
+TEST(a_known_ambiguous_pixel_may_differ_but_only_in_its_own_key) {
+    // keyShadow (400, 150): the eye ray tangent to s1, named in SPEC section 7.
+    rt::Image got = grey(600, 600, 255);
+    set(got, 400, 150, 0, 0);
+    CHECK(grade::judge("keyShadow", grey(600, 600, 255), got).passed());
+    CHECK(!grade::judge("keyAmbient", grey(600, 600, 255), got).passed());
+    set(got, 401, 150, 0, 0);  // its neighbour is not ambiguous
+    CHECK(!grade::judge("keyShadow", grey(600, 600, 255), got).passed());
+}
+
+TEST(the_table_holds_the_pixels_spec_section_7_names) {
+    const auto has = [](const char* key, int x, int y) {
+        for (const grade::AmbiguousPixel& p : grade::ambiguous_pixels_of(key))
+            if (p.x == x && p.y == y) return true;
+        return false;
+    };
+    CHECK(has("keyShadow", 400, 150) && has("keyShadow", 400, 225) && has("keyShadow", 450, 200));
+    CHECK(has("keyIllum", 240, 345) && has("keyIllum", 360, 345));
+    for (const grade::AmbiguousPixel& p : grade::ambiguous_pixels())
+        CHECK(p.x >= 0 && p.x < 600 && p.y >= 0 && p.y < 600 && std::string(p.reason).size() > 20);
+}
+
+TEST(the_first_unexplained_pixels_are_listed_in_reading_order_and_counted_beyond) {
+    const grade::Judgement j = grade::judge("keyAmbient", grey(20, 20, 200), grey(20, 20, 0));
+    CHECK(j.unexplained == 400 && j.first_unexplained.size() == grade::Judgement::kShown);
+    CHECK(j.first_unexplained[1].x == 1 && j.first_unexplained[1].y == 0);
+    CHECK(j.unexplained_box.right == 19 && j.unexplained_box.bottom == 19);
+}
