@@ -61,18 +61,19 @@ public:
     NearestHit<Real> closest(const V& origin, const V& direction, double min_t) const {
         const Real beyond = visible_beyond<Real>(min_t);
         NearestHit<Real> best;
-        traverse(origin, direction, C(min_t), std::numeric_limits<C>::infinity(), [&](Child leaf, C& t1) {
-            for (std::uint32_t k = leaf.first; k < leaf.first + leaf.count; ++k) {
-                Real t;
-                bool inside;
-                if (visible_root(intersect(items_[k], origin, direction), beyond, t, inside) &&
-                    best.replaced_by(t, index_[k])) {
-                    best = {index_[k], t, inside};
-                    t1 = C(t);  // a box entered beyond it cannot hold a nearer root
-                }
-            }
-            return false;
-        });
+        traverse<true>(origin, direction, C(min_t), std::numeric_limits<C>::infinity(),
+                       [&](Child leaf, C& t1) {
+                           for (std::uint32_t k = leaf.first; k < leaf.first + leaf.count; ++k) {
+                               Real t;
+                               bool inside;
+                               if (visible_root(intersect(items_[k], origin, direction), beyond, t, inside) &&
+                                   best.replaced_by(t, index_[k])) {
+                                   best = {index_[k], t, inside};
+                                   t1 = C(t);  // a box entered beyond it cannot hold a nearer root
+                               }
+                           }
+                           return false;
+                       });
         return best;
     }
 
@@ -82,7 +83,7 @@ public:
         if (blocker < items_.size() && blocks_shadow_ray(intersect(items_[blocker], point, to_light)))
             return true;
         bool blocked = false;
-        traverse(point, to_light, C(spec::kShadowRayMinT), C(1), [&](Child leaf, C&) {
+        traverse<false>(point, to_light, C(spec::kShadowRayMinT), C(1), [&](Child leaf, C&) {
             for (std::uint32_t k = leaf.first; k < leaf.first + leaf.count; ++k)
                 if (k != blocker && blocks_shadow_ray(intersect(items_[k], point, to_light))) {
                     blocker = k;
@@ -120,11 +121,12 @@ private:
     // wide tree too, and each level leaves at most Width - 1 entries on the stack.
     static constexpr int kStack = 96 * (Width - 1) + 1;
 
-    // Visits the leaves whose boxes the ray may meet within [t0, t1], nearest first;
-    // leaf(child, t1) may lower t1 and returns true to end the search.
-    template <typename Leaf>
+    // Visits the leaves whose boxes the ray may meet within [t0, t1], nearest first
+    // where kNearestFirst (else in any order: any hit will do); leaf(child, t1) may
+    // lower t1 and returns true to end the search.
+    template <bool kNearestFirst, typename Leaf>
     void traverse(const V& origin, const V& direction, C t0, C t1, Leaf leaf) const;
-    template <bool kGuarded, typename Leaf>
+    template <bool kNearestFirst, bool kGuarded, typename Leaf>
     void traverse(const C (&o)[3], const C (&inv)[3], C t0, C t1, Leaf leaf) const;
 
     // Which children of node the ray may meet within [t0, t1] (bit k for child k), and
@@ -178,7 +180,7 @@ private:
 };
 
 template <typename Real, int Width>
-template <typename Leaf>
+template <bool kNearestFirst, typename Leaf>
 void Bvh<Real, Width>::traverse(const V& origin, const V& direction, C t0, C t1, Leaf leaf) const {
     if (items_.empty()) return;
     const C o[3] = {C(origin.x), C(origin.y), C(origin.z)};
@@ -189,13 +191,13 @@ void Bvh<Real, Width>::traverse(const V& origin, const V& direction, C t0, C t1,
     for (int a = 0; a < 3; ++a)
         farthest = std::max({farthest, std::abs(bounds_.lo[a] - o[a]), std::abs(bounds_.hi[a] - o[a])});
     if (farthest <= guard_)
-        traverse<true>(o, inv, t0, t1, leaf);
+        traverse<kNearestFirst, true>(o, inv, t0, t1, leaf);
     else
-        traverse<false>(o, inv, t0, t1, leaf);
+        traverse<kNearestFirst, false>(o, inv, t0, t1, leaf);
 }
 
 template <typename Real, int Width>
-template <bool kGuarded, typename Leaf>
+template <bool kNearestFirst, bool kGuarded, typename Leaf>
 void Bvh<Real, Width>::traverse(const C (&o)[3], const C (&inv)[3], C t0, C t1, Leaf leaf) const {
     StackEntry stack[kStack];  // NOLINT(cppcoreguidelines-pro-type-member-init): written before read
     int size = 0;
@@ -210,6 +212,10 @@ void Bvh<Real, Width>::traverse(const C (&o)[3], const C (&inv)[3], C t0, C t1, 
         const Node& node = nodes_[entry.child.first];
         C near[Width];
         unsigned mask = meets<kGuarded>(node, o, inv, t0, t1, near);
+        if (!kNearestFirst) {
+            for (; mask != 0; mask &= mask - 1) stack[size++] = {node.child[lowest_bit(mask)], t0};
+            continue;
+        }
         // Pushed farthest first, so that the nearest is visited next.
         StackEntry hits[Width];
         int count = 0;

@@ -5,8 +5,9 @@
 //   surface points and towards lights, grazing ones among them);
 // - Whitted<BruteForce> renders every scene file and random scene as the plain tracer
 //   (render(..., accelerate = false)) does: the reference path is the specification;
-// - render() of scenes past kFlatSweepEllipsoids, which takes the tree, equals the plain
-//   tracer, in float, double and long double and for any number of threads.
+// - the tree's path (render_whitted_to(), which render() takes past
+//   kFlatSweepEllipsoids) renders large scenes and every scene file as the plain tracer,
+//   in float, double and long double and for any number of threads.
 #include <cstdint>
 #include <filesystem>
 #include <iostream>
@@ -95,10 +96,23 @@ int queries_differing(const rt::Scene& scene, unsigned seed) {
     return differing;
 }
 
+// Collects the rows of render_whitted_to() into an image.
+struct ImageSink final : rt::RowSink {
+    rt::Image image;
+    void rows(const std::uint8_t* bytes, std::size_t size) override {
+        image.rgb.insert(image.rgb.end(), bytes, bytes + size);
+    }
+};
+
+// The tree's path (render_whitted_to(), which render() takes past
+// kFlatSweepEllipsoids) against the plain tracer.
 template <typename Real>
 bool renders_as_plain(const std::string& name, const rt::Scene& s, unsigned threads) {
     const rt::Image plain = rt::render<Real>(s, 1, false);
-    const rt::Image fast = rt::render<Real>(s, threads, true);
+    ImageSink sink;
+    sink.image.width = s.columns, sink.image.height = s.rows;
+    rt::render_whitted_to<Real>(s, sink, threads);
+    const rt::Image& fast = sink.image;
     const rt::ImageDiff d = rt::compare_images(fast, plain);
     if (!d.same_size || d.differing_pixels != 0)
         std::cerr << name << " (" << sizeof(Real) << "-byte reals): " << d.differing_pixels
@@ -172,19 +186,28 @@ TEST(reference_path_is_the_plain_tracer) {
     }
 }
 
-TEST(large_scenes_render_as_the_plain_tracer) {
+TEST(scenes_render_through_the_tree_as_the_plain_tracer) {
     std::vector<std::pair<std::string, rt::Scene>> scenes;
     scenes.emplace_back("sphereflake level 2", scale::sphereflake(2));
     scenes.emplace_back("random 300", scale::random_ellipsoids(300));
     for (unsigned seed = 1; seed <= 6; ++seed)
         scenes.emplace_back("hard crowd " + std::to_string(seed), hard_crowd(seed, 120));
+    for (const auto& [name, scene] : all_scene_files()) scenes.emplace_back(name, scene);
     unsigned threads = 1;
     for (auto& [name, scene] : scenes) {
-        CHECK(scene.spheres.size() > rt::kFlatSweepEllipsoids);  // the tree's path
-        scene.columns = 71, scene.rows = 53;
+        scene.columns = std::min(scene.columns, 71), scene.rows = std::min(scene.rows, 53);
         CHECK(renders_as_plain<float>(name, scene, threads));
         CHECK(renders_as_plain<double>(name, scene, threads));
         CHECK(renders_as_plain<long double>(name, scene, threads));
         threads = threads % 7 + 1;
     }
+}
+
+// render() itself takes the tree past kFlatSweepEllipsoids: the same bytes.
+TEST(render_takes_the_tree_past_the_flat_sweep) {
+    rt::Scene scene = scale::random_ellipsoids(static_cast<int>(rt::kFlatSweepEllipsoids) + 1);
+    scene.columns = 61, scene.rows = 41;
+    const rt::Image plain = rt::render<double>(scene, 1, false);
+    const rt::Image fast = rt::render<double>(scene, 2, true);
+    CHECK(fast.rgb == plain.rgb);
 }
