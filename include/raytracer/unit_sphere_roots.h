@@ -6,11 +6,12 @@
 // (a run of columns) get the same bits (the build uses -ffp-contract=off).
 //
 // Scaling. d' is scaled first, e = d' / m with m the power of two at or below
-// max |d'_i| (an exact scaling), so that |e| is in [1, 2 sqrt(3)) and no square of it overflows or underflows
-// (a thickness of 1e-300 makes d'_z ~ 1e300). The ray is o' + s e with s = t / m; a = e.e, b = o'.e, c =
-// o'.o' - 1, and a s^2 + 2 b s + c = 0. No square of o' is needed for the decision: with w = o' x e, b^2 - a
-// c = a - w.w (|w| / |e| is the distance of the line from the centre, and |w| <= |o'| |e|); where w.w
-// overflows the ray misses by far.
+// max |d'_i| (exact; long double divides instead), so that |e| is in [1, 2 sqrt(3)) and
+// no square of it overflows or underflows (a thickness of 1e-300 makes d'_z ~ 1e300).
+// The ray is o' + s e with s = t / m; a = e.e, b = o'.e, c = o'.o' - 1, and
+// a s^2 + 2 b s + c = 0. No square of o' is needed for the decision: with w = o' x e,
+// b^2 - a c = a - w.w (|w| / |e| is the distance of the line from the centre, and
+// |w| <= |o'| |e|); where w.w overflows the ray misses by far.
 //
 // Discriminant. w / |e| is the vector l = o' - (o'.u) u, u = e / |e|, of E. Haines,
 // J. Guenther, T. Akenine-Moller, "Precision Improvements for Ray/Sphere Intersection"
@@ -20,20 +21,22 @@
 // difference of two products whose size, m_i = |o'_j e_k| + |o'_k e_j|, is a
 // world-space distance over a scale, not |o'|.
 //
-// Error bound, with e = epsilon (2u, u the unit roundoff), first order in e (N. J.
-// Higham, Accuracy and Stability of Numerical Algorithms, 2nd ed., SIAM 2002, sections
-// 2.2 and 3.1): the data o' and e carry relative errors of at most 2e per component
-// (o' = (o - C)/s: the roundings of the scene's own numbers and of the arithmetic; e:
-// d/s and the scaling), so each product o'_j e_k is off by at most 2e of itself, and the
-// difference by e/2 of m_i more: |dw_i| <= 3e m_i. Then |d(w.w)| <= 2 sum |w_i| |dw_i|
-// + 2e w.w <= 6e sum |w_i| m_i + 2e w.w, and a = e.e is off by at most 2e a. A value of
-// a - w.w computed within
-//   bound = e (8 sum |w_i| m_i + 4 w.w + 4 a)
+// Error bound, with eps = epsilon (2u, u the unit roundoff), first order in eps
+// (N. J. Higham, Accuracy and Stability of Numerical Algorithms, 2nd ed., SIAM 2002,
+// sections 2.2 and 3.1): the data o' and e carry relative errors of at most 2 eps per
+// component (o' = (o - C)/s: the roundings of the scene's own numbers and of the
+// arithmetic; e: d/s and the scaling), so each product o'_j e_k is off by at most
+// 2 eps of itself, and the difference by eps/2 of m_i more: |dw_i| <= 3 eps m_i. Then
+// |d(w.w)| <= 2 sum |w_i| |dw_i| + 2 eps w.w <= 6 eps sum |w_i| m_i + 2 eps w.w, and
+// a = e.e is off by at most 2 eps a. A value of a - w.w computed within
+//   bound = eps (8 sum |w_i| m_i + 4 w.w + 4 a)
 // below zero cannot be told from zero and counts as tangent (an exactly tangent ray is a
-// hit, SPEC section 4); e is the scene's precision (scene_precision.h), so double and long
-// double decide alike. A ray that passes farther than twice the radius (w.w > 4a) is a
-// miss whatever the bound says: the bound only concerns near-tangent rays. For an eye ray
-// through a facing disc m_i is a few of its radii, so the bound is a few e, not e |o'|.
+// hit, SPEC section 4); eps is the scene's precision (scene_precision.h), so double and
+// long double decide alike. A ray that passes farther than twice the radius (w.w > 4a)
+// is a miss whatever the bound says: the bound only concerns near-tangent rays. For an
+// eye ray through a facing disc m_i is a few of its radii, so the bound is a few eps,
+// not eps |o'|; it is eps |o'| where o' is long and across the ray (a sphere far off
+// the axis), as the data's own rounding is there.
 //
 // Roots. q = -(b + sign(b) sqrt(a - w.w)) is free of cancellation, and s = q/a, s = c/q
 // (W. H. Press et al., Numerical Recipes, 3rd ed., section 5.6; D. Goldberg, "What Every
@@ -51,9 +54,9 @@
 // can be far more than a few ulps from 1 when the ray meets the surface at a slant (a
 // small discriminant amplifies its error), so comparing it with 1 would decide by
 // rounding, and differently in double and long double. Whether the point itself lies on
-// the surface is well conditioned: p = o' + d' with |dp_i| <= 2e g_i, g_i = |o'_i| +
-// |d'_i| (the roundings of o', d' and the sum), so |p|^2 - 1 is off by at most
-// 4e sum |p_i| g_i + 2e; within twice that of zero, p is on the surface, the ray meets it
+// the surface is well conditioned: p = o' + d' with |dp_i| <= 2 eps g_i,
+// g_i = |o'_i| + |d'_i| (the roundings of o', d' and the sum), so |p|^2 - 1 is off by at
+// most 4 eps sum |p_i| g_i + 2 eps; within twice that of zero, p is on the surface, the ray meets it
 // (a hit) and the root nearer t = 1 is 1 exactly: thresholds at t = 1 (the near plane,
 // the light) then decide as in exact arithmetic, alike in every precision. Where that
 // allowance is not small (|p| near overflow) nothing is set.
