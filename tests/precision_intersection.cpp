@@ -5,6 +5,7 @@
 
 #include "check.h"
 #include "raytracer/ellipsoid.h"
+#include "raytracer/shadow_segment.h"
 #include "raytracer/tracer.h"
 
 namespace {
@@ -70,8 +71,8 @@ TEST(a_ray_that_misses_by_a_millionth_is_a_miss) {
 }
 
 // A unit sphere 1e9 away, hit half a radius off centre: b^2 and ac are ~1e18, so their
-// rounding errors (~100) swamp their difference (0.75); the perpendicular form keeps
-// 1 - l.l = 0.75 to ~1e-7.
+// rounding errors (~100) swamp their difference (0.75); the cross-product form
+// (unit_sphere_roots.h) keeps 1 - |l|^2 = 0.75 to ~1e-7.
 TEST(a_far_sphere_keeps_its_discriminant_in_double) {
     const auto e = ellipsoid<double>({0, 0, -1e9}, {1, 1, 1});
     const rt::Vec3<double> d{0.5e-9, 0, -1};
@@ -123,4 +124,44 @@ TEST(a_ray_from_inside_sees_the_inner_surface) {
     const auto outside = tracer.nearest_hit({0, 0, 20}, {0, 0, -1}, 1.0);
     CHECK(!outside.inside);
     CHECK_NEAR(outside.t, 11.0, 1e-12);
+}
+
+// A light exactly on a surface: the shadow ray's root at the light is t = 1, which
+// rounding used to put either side of 1 (SPEC section 5: blocked by 0.001 < t < 1 only).
+// Ball (1.5, 1, 1.25) at z = -6, light at its rightmost point (1.5, 0, -6).
+template <typename Real>
+void check_light_on_surface() {
+    const auto ball = ellipsoid<Real>({0, 0, -6}, {1.5, 1, 1.25});
+    const rt::Vec3<Real> light{Real(1.5), 0, -6};
+    // From outside, entering the ball at the light (the other root beyond it).
+    for (const rt::Vec3<Real>& point : {rt::Vec3<Real>{4, 0, -6}, rt::Vec3<Real>{3, Real(1.1), -6},
+                                        rt::Vec3<Real>{Real(1.6), Real(-2.3), -5}})
+        CHECK(!rt::blocks_segment(ball, point, light - point));
+    // From the ball's own bottom, along a chord that ends at the light: roots 0 and 1.
+    const rt::Vec3<Real> bottom{0, -1, -6};
+    CHECK(!rt::blocks_segment(ball, bottom, light - bottom));
+    const rt::Roots<Real> chord = rt::intersect(ball, bottom, light - bottom);
+    CHECK(chord.hit);
+    CHECK_EQ(chord.far, Real(1));
+    // A light 256 scene ulps inside the surface is behind it: the point test is that tight.
+    const rt::Vec3<Real> inside{Real(1.5) * (1 - 256 * rt::scene_epsilon<Real>()), 0, -6}, outside{4, 0, -6};
+    CHECK(rt::blocks_segment(ball, outside, inside - outside));
+}
+
+TEST(a_light_on_a_surface_is_not_blocked_by_it_in_any_precision) {
+    check_light_on_surface<float>();
+    check_light_on_surface<double>();
+    check_light_on_surface<long double>();
+}
+
+// An eye ray whose pixel lies on the surface (scenes/hollow.txt, pixel (200, 72)): the
+// shell (1.1, 0.8, 1) at z = -1.6 and the ray through (0, 0.64, -1) meet at t = 1 exactly
+// (mapped: (0, 0.8, 0.6)), at a slant that amplifies the root's rounding; the point test
+// makes the root exactly 1 in every precision, so the near plane cuts it away alike.
+TEST(a_pixel_on_the_surface_gives_a_root_of_exactly_one) {
+    CHECK_EQ(eye_ray(ellipsoid<float>({0, 0, -1.6}, {1.1, 0.8, 1}), 0, 0.64, -1).far, 1.0F);
+    CHECK_EQ(eye_ray(ellipsoid<double>({0, 0, -1.6}, {1.1, 0.8, 1}), 0, 0.64, -1).far, 1.0);
+    CHECK_EQ(eye_ray(ellipsoid<long double>({0, 0, -1.6}, {1.1, 0.8, 1}), 0, 0.64, -1).far, 1.0L);
+    // A pixel a millionth off the surface keeps its computed root.
+    CHECK(eye_ray(ellipsoid<double>({0, 0, -1.6}, {1.1, 0.8, 1}), 0, 0.64 + 1e-6, -1).far != 1.0);
 }

@@ -8,6 +8,7 @@
 
 #include "raytracer/ellipsoid.h"
 #include "raytracer/scene.h"
+#include "raytracer/shadow_segment.h"
 #include "raytracer/vec3.h"
 
 // Uniform in [lo, hi) from the raw generator output: the same numbers on every
@@ -17,11 +18,10 @@ inline double uniform(std::mt19937& g, double lo, double hi) {
 }
 
 // Whether ellipsoid e blocks the shadow ray from point to the light at point + to_light:
-// a root of intersect() in (0.001, 1), as the unculled renderer decides.
+// blocks_segment(), as the unculled renderer decides.
 inline bool blocks(const rt::Ellipsoid<double>& e, const rt::Vec3<double>& point,
                    const rt::Vec3<double>& to_light) {
-    const rt::Roots<double> r = rt::intersect(e, point, to_light);
-    return r.hit && ((r.near > 0.001 && r.near < 1) || (r.far > 0.001 && r.far < 1));
+    return rt::blocks_segment(e, point, to_light);
 }
 
 // 3 to 16 random ellipsoids in front of the camera: the first a room (around the others

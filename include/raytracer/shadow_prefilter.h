@@ -125,7 +125,7 @@ public:
 private:
     static C mask(bool b) { return b ? C(1) : C(0); }
 
-    static constexpr double kShadowMinT = 0.001;  // as rt::kShadowRayMinT (tracer.h)
+    static constexpr double kShadowMinT = 0.001;  // as rt::kShadowRayMinT (shadow_segment.h)
 
     std::vector<Vec3<C>> centre_, inverse_scale_;
 };

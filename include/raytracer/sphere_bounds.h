@@ -7,7 +7,8 @@
 // multiplications and no division. The sphere of an ellipsoid is centred on it with
 // radius max|s| (1 + kInflation); it contains the ellipsoid with a gap of at least
 // kInflation in the unit sphere's space, far more than the rounding of intersect() (a
-// few ulps, plus its tangent allowance of 4 epsilon). So every culled test is one that
+// few ulps, plus its tangent bound, unit_sphere_roots.h: at most ~64 epsilon times the
+// distance in radii, 1e-8 within the reach below). So every culled test is one that
 // intersect() would have answered "no usable root", and images stay bit-identical.
 // Where the ray's origin (or light) is so far from an ellipsoid, relative to its
 // smallest scale, that rounding could approach that gap, nothing is culled.

@@ -1,0 +1,178 @@
+// The one root solver: where a mapped ray o' + t d' meets the unit sphere (ellipsoid.h
+// maps an ellipsoid's ray there). It is one lane's arithmetic, written once and without
+// branches (selects only), so that a scalar call is one lane and a loop calling it over
+// lanes of arrays is vectorised by GCC and Clang with the same IEEE operations in the
+// same order: intersect_mapped() (one lane), intersect_lanes() (N lanes) and EyeRays
+// (a run of columns) get the same bits (the build uses -ffp-contract=off).
+//
+// Scaling. d' is scaled first, e = d' / m with m the power of two at or below
+// max |d'_i| (exact; long double divides instead), so that |e| is in [1, 2 sqrt(3)) and
+// no square of it overflows or underflows (a thickness of 1e-300 makes d'_z ~ 1e300).
+// The ray is o' + s e with s = t / m; a = e.e, b = o'.e, c = o'.o' - 1, and
+// a s^2 + 2 b s + c = 0. No square of o' is needed for the decision: with w = o' x e,
+// b^2 - a c = a - w.w (|w| / |e| is the distance of the line from the centre, and
+// |w| <= |o'| |e|); where w.w overflows the ray misses by far.
+//
+// Discriminant. w / |e| is the vector l = o' - (o'.u) u, u = e / |e|, of E. Haines,
+// J. Guenther, T. Akenine-Moller, "Precision Improvements for Ray/Sphere Intersection"
+// (Ray Tracing Gems, Apress 2019, ch. 7), but as a cross product it does not cancel
+// where o' is long and nearly along e (a thin or far ellipsoid seen face on, where l's
+// component along u is |o'| minus |o'|): each component o'_j e_k - o'_k e_j is a
+// difference of two products whose size, m_i = |o'_j e_k| + |o'_k e_j|, is a
+// world-space distance over a scale, not |o'|.
+//
+// Error bound, with eps = epsilon (2u, u the unit roundoff), first order in eps
+// (N. J. Higham, Accuracy and Stability of Numerical Algorithms, 2nd ed., SIAM 2002,
+// sections 2.2 and 3.1): the data o' and e carry relative errors of at most 2 eps per
+// component (o' = (o - C)/s: the roundings of the scene's own numbers and of the
+// arithmetic; e: d/s and the scaling), so each product o'_j e_k is off by at most
+// 2 eps of itself, and the difference by eps/2 of m_i more: |dw_i| <= 3 eps m_i. Then
+// |d(w.w)| <= 2 sum |w_i| |dw_i| + 2 eps w.w <= 6 eps sum |w_i| m_i + 2 eps w.w, and
+// a = e.e is off by at most 2 eps a. A value of a - w.w computed within
+//   bound = eps (8 sum |w_i| m_i + 4 w.w + 4 a)
+// below zero cannot be told from zero and counts as tangent (an exactly tangent ray is a
+// hit, SPEC section 4); eps is the scene's precision (scene_precision.h), so double and
+// long double decide alike. A ray that passes farther than twice the radius (w.w > 4a)
+// is a miss whatever the bound says: the bound only concerns near-tangent rays. For an
+// eye ray through a facing disc m_i is a few of its radii, so the bound is a few eps,
+// not eps |o'|; it is eps |o'| where o' is long and across the ray (a sphere far off
+// the axis), as the data's own rounding is there.
+//
+// Roots. q = -(b + sign(b) sqrt(a - w.w)) is free of cancellation, and s = q/a, s = c/q
+// (W. H. Press et al., Numerical Recipes, 3rd ed., section 5.6; D. Goldberg, "What Every
+// Computer Scientist Should Know About Floating-Point Arithmetic", ACM Computing Surveys
+// 23(1), 1991, section 1.4), both from one reciprocal r = 1/(a q): q/a = q (q r) and
+// c/q = c (a r) (three roundings each). c cancels when the origin lies on the surface
+// (shadow and reflected rays), benignly: its error is that of the origin itself, and it
+// only enters a root ~0 that the thresholds 0.001 and 0.0001 discard. Where c >= 1e30
+// (it may have overflowed) |b| >= 1e15 |e| >> sqrt(a - w.w), and the other root is
+// -(b - sign(b) sqrt(a - w.w)) / a, without cancellation. q = 0 (the origin on the
+// surface, the ray grazing it) gives roots 0, 0.
+//
+// The point at t = 1. Where a decimal scene puts a root exactly at t = 1 (an eye ray's
+// pixel on the near plane lying on the surface, a light on a surface), the computed root
+// can be far more than a few ulps from 1 when the ray meets the surface at a slant (a
+// small discriminant amplifies its error), so comparing it with 1 would decide by
+// rounding, and differently in double and long double. Whether the point itself lies on
+// the surface is well conditioned: p = o' + d' with |dp_i| <= 2 eps g_i,
+// g_i = |o'_i| + |d'_i| (the roundings of o', d' and the sum), so |p|^2 - 1 is off by at
+// most 4 eps sum |p_i| g_i + 2 eps; within twice that of zero, p is on the surface, the ray meets it
+// (a hit) and the root nearer t = 1 is 1 exactly: thresholds at t = 1 (the near plane,
+// the light) then decide as in exact arithmetic, alike in every precision. Where that
+// allowance is not small (|p| near overflow) nothing is set.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+
+#include "raytracer/compiler.h"
+#include "raytracer/scene_precision.h"
+
+namespace rt {
+
+// A power of two p with 1 <= p |x| < 2 for a finite x != 0 (|x| below the normal range
+// is taken as the smallest normal): scaling by it is exact. Read from the exponent bits
+// (IEEE 754 binary64 and binary32) so that it vectorises; other formats divide.
+template <typename Real>
+RT_ALWAYS_INLINE Real reciprocal_power_of_two(Real x) {
+    using std::abs;
+    if constexpr (std::numeric_limits<Real>::is_iec559 && sizeof(Real) == sizeof(std::uint64_t) &&
+                  std::numeric_limits<Real>::digits == 53) {
+        std::uint64_t bits;
+        std::memcpy(&bits, &x, sizeof bits);
+        const std::uint64_t exponent = bits & 0x7FF0000000000000U;
+        // Biased exponent k: 2^(k - 1023), reciprocal 2^(1023 - k), biased 2046 - k.
+        const std::uint64_t inverse = exponent == 0 ? 0x7FD0000000000000U : 0x7FE0000000000000U - exponent;
+        Real p;
+        std::memcpy(&p, &inverse, sizeof p);
+        return p;
+    } else if constexpr (std::numeric_limits<Real>::is_iec559 && sizeof(Real) == sizeof(std::uint32_t) &&
+                         std::numeric_limits<Real>::digits == 24) {
+        std::uint32_t bits;
+        std::memcpy(&bits, &x, sizeof bits);
+        const std::uint32_t exponent = bits & 0x7F800000U;
+        const std::uint32_t inverse = exponent == 0 ? 0x7E800000U : 0x7F000000U - exponent;
+        Real p;
+        std::memcpy(&p, &inverse, sizeof p);
+        return p;
+    } else {
+        return Real(1) / abs(x);
+    }
+}
+
+// The first half: whether the line meets the sphere, and the terms the roots need.
+template <typename Real>
+struct UnitLine {
+    Real hit;              // 1 or 0
+    Real on;               // 1 where the point at t = 1 is on the surface (then hit is 1)
+    Real a, b, disc;       // e.e, o'.e, a - w.w (clamped at 0)
+    Real inverse_largest;  // 1/m
+};
+
+// o' = (ox, oy, oz), d' = (dx, dy, dz).
+template <typename Real>
+RT_ALWAYS_INLINE UnitLine<Real> unit_line(Real ox, Real oy, Real oz, Real dx, Real dy, Real dz) {
+    using std::abs;
+    // e = d' / m. std::max is not used: (x < y) ? y : x vectorises.
+    const Real ax = abs(dx), ay = abs(dy), az = abs(dz);
+    const Real ayz = ay < az ? az : ay;
+    const Real inverse_largest = reciprocal_power_of_two(ax < ayz ? ayz : ax);
+    const Real ex = dx * inverse_largest, ey = dy * inverse_largest, ez = dz * inverse_largest;
+    const Real a = ex * ex + ey * ey + ez * ez;
+    const Real b = ox * ex + oy * ey + oz * ez;
+    // w = o' x e and the sizes m_i of its components' products.
+    const Real pyz = oy * ez, pzy = oz * ey, pzx = oz * ex, pxz = ox * ez, pxy = ox * ey, pyx = oy * ex;
+    const Real wx = pyz - pzy, wy = pzx - pxz, wz = pxy - pyx;
+    const Real mx = abs(pyz) + abs(pzy), my = abs(pzx) + abs(pxz), mz = abs(pxy) + abs(pyx);
+    const Real w2 = wx * wx + wy * wy + wz * wz;
+    const Real disc = a - w2;
+    const Real bound =
+        scene_epsilon<Real>() * (Real(8) * (abs(wx) * mx + abs(wy) * my + abs(wz) * mz) + Real(4) * (w2 + a));
+    const Real miss = disc < -bound ? Real(1) : (w2 > Real(4) * a ? Real(1) : Real(0));
+    // The point at t = 1.
+    const Real px = ox + dx, py = oy + dy, pz = oz + dz;
+    const Real gx = abs(ox) + ax, gy = abs(oy) + ay, gz = abs(oz) + az;
+    const Real surface = (px * px + py * py + pz * pz) - Real(1);
+    const Real allowance =
+        scene_epsilon<Real>() * (Real(8) * (abs(px) * gx + abs(py) * gy + abs(pz) * gz) + Real(4));
+    const Real on = abs(surface) <= allowance ? (allowance < Real(0.5) ? Real(1) : Real(0)) : Real(0);
+    return {on != 0 ? Real(1) : Real(1) - miss, on, a, b, disc < 0 ? Real(0) : disc, inverse_largest};
+}
+
+// hit is 1 (the line meets the sphere, tangency included) or 0; near <= far are the
+// ray parameters t of the original ray where hit is 1.
+template <typename Real>
+struct LaneRoots {
+    Real hit, near, far;
+};
+
+// The second half, given unit_line() and c = o'.o' - 1 of the origin (MappedOrigin).
+template <typename Real>
+RT_ALWAYS_INLINE LaneRoots<Real> unit_roots(const UnitLine<Real>& line, Real c) {
+    using std::abs;
+    const Real signed_root = std::copysign(std::sqrt(line.disc), line.b);
+    const Real q = -(line.b + signed_root);
+    const Real r = Real(1) / (line.a * q);
+    const Real q_r = q * r, a_r = line.a * r;  // 1/a and 1/q
+    const Real other = c < Real(1e30) ? c * a_r : -(line.b - signed_root) * q_r;
+    const Real t1 = (q * q_r) * line.inverse_largest, t2 = other * line.inverse_largest;
+    Real near = t1 > t2 ? t2 : t1, far = t1 > t2 ? t1 : t2;
+    near = q == 0 ? Real(0) : near;
+    far = q == 0 ? Real(0) : far;
+    // The root nearer t = 1 is 1 where the point at t = 1 is on the surface.
+    const Real near_at_one = abs(near - Real(1)) <= abs(far - Real(1)) ? line.on : Real(0);
+    near = near_at_one != 0 ? Real(1) : near;
+    far = line.on - near_at_one != 0 ? Real(1) : far;
+    return {line.hit, near, far};
+}
+
+// Both halves: one lane, o' = (ox, oy, oz), c = o'.o' - 1, d' = (dx, dy, dz).
+template <typename Real>
+RT_ALWAYS_INLINE LaneRoots<Real> unit_sphere_roots(Real ox, Real oy, Real oz, Real c, Real dx, Real dy,
+                                                   Real dz) {
+    return unit_roots(unit_line(ox, oy, oz, dx, dy, dz), c);
+}
+
+}  // namespace rt
