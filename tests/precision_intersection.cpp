@@ -5,7 +5,7 @@
 
 #include "check.h"
 #include "raytracer/ellipsoid.h"
-#include "raytracer/shadow_segment.h"
+#include "raytracer/spec_rules.h"
 #include "raytracer/tracer.h"
 
 namespace {

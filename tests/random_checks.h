@@ -8,7 +8,7 @@
 
 #include "raytracer/ellipsoid.h"
 #include "raytracer/scene.h"
-#include "raytracer/shadow_segment.h"
+#include "raytracer/spec_rules.h"
 #include "raytracer/vec3.h"
 
 // Uniform in [lo, hi) from the raw generator output: the same numbers on every

@@ -26,7 +26,7 @@ public:
     // The nearest ellipsoid that origin + t direction meets at a visible root beyond
     // min_t (spec_rules.h).
     NearestHit<Real> closest(const V& origin, const V& direction, double min_t) const {
-        const Real beyond = visible_beyond<Real>(min_t);
+        const Real beyond = visible_beyond(Real(min_t));
         NearestHit<Real> best;
         const std::vector<Ellipsoid<Real>>& all = ellipsoids_;
         for (std::uint32_t i = 0; i < all.size(); ++i) {
@@ -45,9 +45,9 @@ public:
     // is tried first.
     bool occluded(const V& point, const V& to_light, std::uint32_t& blocker) const {
         const std::vector<Ellipsoid<Real>>& all = ellipsoids_;
-        if (blocker < all.size() && blocks_shadow_ray(intersect(all[blocker], point, to_light))) return true;
+        if (blocker < all.size() && blocks_segment(all[blocker], point, to_light)) return true;
         for (std::uint32_t i = 0; i < all.size(); ++i)
-            if (blocks_shadow_ray(intersect(all[i], point, to_light))) return blocker = i, true;
+            if (blocks_segment(all[i], point, to_light)) return blocker = i, true;
         return false;
     }
 

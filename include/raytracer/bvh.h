@@ -59,7 +59,7 @@ public:
 
     // As BruteForce::closest(): the nearest visible root beyond min_t.
     NearestHit<Real> closest(const V& origin, const V& direction, double min_t) const {
-        const Real beyond = visible_beyond<Real>(min_t);
+        const Real beyond = visible_beyond(Real(min_t));
         NearestHit<Real> best;
         traverse<true>(origin, direction, C(min_t), std::numeric_limits<C>::infinity(),
                        [&](Child leaf, C& t1) {
@@ -80,12 +80,11 @@ public:
     // As BruteForce::occluded(): whether some ellipsoid blocks the shadow ray, trying
     // first the one that blocked this light last (blocker: a position in leaf order).
     bool occluded(const V& point, const V& to_light, std::uint32_t& blocker) const {
-        if (blocker < items_.size() && blocks_shadow_ray(intersect(items_[blocker], point, to_light)))
-            return true;
+        if (blocker < items_.size() && blocks_segment(items_[blocker], point, to_light)) return true;
         bool blocked = false;
-        traverse<false>(point, to_light, C(spec::kShadowRayMinT), C(1), [&](Child leaf, C&) {
+        traverse<false>(point, to_light, C(kShadowRayMinT), C(1), [&](Child leaf, C&) {
             for (std::uint32_t k = leaf.first; k < leaf.first + leaf.count; ++k)
-                if (k != blocker && blocks_shadow_ray(intersect(items_[k], point, to_light))) {
+                if (k != blocker && blocks_segment(items_[k], point, to_light)) {
                     blocker = k;
                     return blocked = true;
                 }

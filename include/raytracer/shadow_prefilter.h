@@ -21,6 +21,7 @@
 
 #include "raytracer/ellipsoid.h"
 #include "raytracer/scene_precision.h"
+#include "raytracer/spec_rules.h"
 #include "raytracer/vec3.h"
 
 namespace rt {
@@ -60,7 +61,7 @@ public:
         if (!(disc > C(1e-3) * a)) return kUnsure;
         const C root = sqrt(disc);
         const C near = -b - root, far = -b + root;  // a times the roots
-        const C lo = C(kShadowMinT), margin = C(1e-4);
+        const C lo = C(kShadowRayMinT), margin = C(1e-4);
         const C in_lo = (lo + margin) * a, in_hi = (C(1) - margin) * a;
         const C out_lo = (lo - margin) * a, out_hi = (C(1) + margin) * a;
         auto clearly_in = [&](C t) { return t > in_lo && t < in_hi; };
@@ -93,7 +94,7 @@ public:
         Lanes<N> out;
         using std::sqrt;
         const Vec3<C> centre = centre_[i], inverse = inverse_scale_[i];
-        const C lo = C(kShadowMinT), margin = C(1e-4);
+        const C lo = C(kShadowRayMinT), margin = C(1e-4);
         for (int k = 0; k < N; ++k) {
             const C ox = (px[k] - centre.x) * inverse.x, oy = (py[k] - centre.y) * inverse.y,
                     oz = (pz[k] - centre.z) * inverse.z;
@@ -124,8 +125,6 @@ public:
 
 private:
     static C mask(bool b) { return b ? C(1) : C(0); }
-
-    static constexpr double kShadowMinT = 0.001;  // as rt::kShadowRayMinT (shadow_segment.h)
 
     std::vector<Vec3<C>> centre_, inverse_scale_;
 };

@@ -1,34 +1,35 @@
 // The rules of SPEC sections 3-5 that decide, per ray and ellipsoid, what a root means:
-// which root an eye or reflected ray sees, and whether a shadow ray is blocked. Every
-// geometry query (brute_force.h, bvh.h) decides with these, so that they agree bit for bit.
+// which root an eye or reflected ray sees, and whether a shadow ray is blocked, with
+// the constants the course keys fix. Every path of the renderer (the flat sweep of
+// tracer.h and its vector lanes, the geometry queries of brute_force.h and bvh.h)
+// decides with these, so that all agree bit for bit.
 #pragma once
 
 #include <cstdint>
 
 #include "raytracer/ellipsoid.h"
 #include "raytracer/scene_precision.h"
+#include "raytracer/vec3.h"
 
 namespace rt {
 
 // Epsilons and limits that the course keys fix (SPEC sections 3 and 5).
-namespace spec {
 inline constexpr double kEyeRayMinT = 1.0;       // the near plane is at t = 1
 inline constexpr double kShadowRayMinT = 0.001;  // the keys need 0.001, not 0.0001
 inline constexpr double kReflectedRayMinT = 0.0001;
 inline constexpr int kMaxReflections = 3;
-}  // namespace spec
 
-// The ray parameter beyond which a root is visible, for a ray that starts at min_t. A
-// root computed within a few ulps of min_t cannot be told from one at min_t, and one at
-// min_t is not visible (the hit must lie beyond it). This decides the eye rays through
-// the rim where the near plane cuts an ellipsoid: keyIllum's pixels (240,345),
-// (360,345), (345,240), (345,360) have their far root at exactly t = 1 (a 3-4-5
-// triangle), which double rounding puts 2 ulps above 1. The ulps are those of the
-// scene's double numbers, whatever Real is (scene_precision.h), so that long double
+// A ray parameter a root must lie beyond to be visible, for a ray that starts at
+// min_t. A root computed within a few ulps of min_t cannot be told from one at min_t,
+// and one at min_t is not visible (the hit must lie beyond it). This decides the eye
+// rays through the rim where the near plane cuts an ellipsoid: keyIllum's pixels
+// (240,345), (360,345), (345,240), (345,360) have their far root at exactly t = 1 (a
+// 3-4-5 triangle), which double rounding puts 2 ulps above 1. The ulps are those of
+// the scene's double numbers, whatever Real is (scene_precision.h), so that long double
 // decides these pixels as double does.
 template <typename Real>
-Real visible_beyond(double min_t) {
-    return Real(min_t) * (Real(1) + Real(8) * scene_epsilon<Real>());
+Real visible_beyond(Real min_t) {
+    return min_t * (Real(1) + Real(8) * scene_epsilon<Real>());
 }
 
 // The root a ray sees of an ellipsoid it meets, given visible_beyond(): the near root
@@ -42,12 +43,18 @@ bool visible_root(const Roots<Real>& r, Real beyond, Real& t, bool& inside) {
     return t > beyond;
 }
 
-// Whether a shadow ray from a point towards a light at t = 1 is blocked by an ellipsoid
-// with these roots: a root strictly between kShadowRayMinT and the light.
+// The shadow rule of SPEC section 5: ellipsoid e blocks the light when the segment from
+// the lit point to the light, point + t (light - point), meets it at 0.001 < t < 1. Its
+// ends are decided as the near plane is: a root within 8 scene ulps of 0.001 or of the
+// light (t = 1) is at it and does not block; a light on the surface itself gets a root
+// of exactly 1 (unit_sphere_roots.h). So every precision decides a light on a surface
+// as exact arithmetic does.
 template <typename Real>
-bool blocks_shadow_ray(const Roots<Real>& r) {
-    const Real min_t = Real(spec::kShadowRayMinT);
-    return r.hit && ((r.near > min_t && r.near < 1) || (r.far > min_t && r.far < 1));
+bool blocks_segment(const Ellipsoid<Real>& e, const Vec3<Real>& point, const Vec3<Real>& to_light) {
+    const Real min_t = visible_beyond(Real(kShadowRayMinT));
+    const Real max_t = Real(1) - Real(8) * scene_epsilon<Real>();
+    const Roots<Real> r = intersect(e, point, to_light);
+    return r.hit && ((r.near > min_t && r.near < max_t) || (r.far > min_t && r.far < max_t));
 }
 
 // A geometry's hint for its any-hit query, per light and thread: which ellipsoid to try

@@ -25,17 +25,11 @@
 #include "raytracer/scene_precision.h"
 #include "raytracer/screen_bounds.h"
 #include "raytracer/shadow_prefilter.h"
-#include "raytracer/shadow_segment.h"
+#include "raytracer/spec_rules.h"
 #include "raytracer/sphere_bounds.h"
 #include "raytracer/vec3.h"
 
 namespace rt {
-
-// Epsilons and limits that the course keys fix (SPEC sections 3 and 5); the shadow
-// ray's, kShadowRayMinT, is in shadow_segment.h.
-inline constexpr double kEyeRayMinT = 1.0;  // the near plane is at t = 1
-inline constexpr double kReflectedRayMinT = 0.0001;
-inline constexpr int kMaxReflections = 3;
 
 template <typename Real>
 struct PointLight {
@@ -239,7 +233,7 @@ public:
     const MappedOrigin<Real>& eye_origin(std::size_t i) const { return eye_origin_[i]; }
     // Whether an eye ray's root t counts as a hit beyond the near plane: closest()'s test
     // (a root within 8 scene ulps of t = 1 is on the plane, see there).
-    static Real eye_min_t() { return Real(kEyeRayMinT) * (Real(1) + Real(8) * scene_epsilon<Real>()); }
+    static Real eye_min_t() { return visible_beyond(Real(kEyeRayMinT)); }
 
     // Per ellipsoid, the columns of a row that may see it (screen_bounds.h).
     RowSpans<C> row_spans(const Scene& scene) const {
@@ -292,7 +286,7 @@ public:
         const std::uint32_t* some_ray = scratch.candidates.data();
         const std::size_t count = bounds_.template candidate_lanes<N>(
             ox, oy, oz, dx, dy, dz, lanes, scratch.candidates.data(), scratch.cull.data());
-        min_t *= Real(1) + Real(8) * scene_epsilon<Real>();  // as in closest()
+        min_t = visible_beyond(min_t);  // as in closest()
         Real best[N], found[N], far_root[N];
         for (int k = 0; k < N; ++k)
             best[k] = 0, found[k] = 0, far_root[k] = 0, index[k] = TraceScratch<Real>::kNone;
@@ -431,22 +425,15 @@ private:
     template <typename Intersect>
     Hit closest(const std::uint32_t* first, const std::uint32_t* last, Real min_t,
                 Intersect intersect_of) const {
-        // A root computed within a few ulps of min_t cannot be told from one at min_t, and
-        // one at min_t is not visible (the hit must lie beyond it). This decides the eye
-        // rays through the rim where the near plane cuts an ellipsoid: keyIllum's pixels
-        // (240,345), (360,345), (345,240), (345,360) have their far root at exactly t = 1
-        // (a 3-4-5 triangle), which double rounding puts 2 ulps above 1. The ulps are those
-        // of the scene's double numbers, whatever Real is (scene_precision.h), so that long
-        // double decides these pixels as double does.
-        min_t *= Real(1) + Real(8) * scene_epsilon<Real>();
+        const Real beyond = visible_beyond(min_t);  // spec_rules.h
         Hit best;
         for (; first != last; ++first) {
             const Ellipsoid<Real>& e = ellipsoids_[*first];
-            const Roots<Real> r = intersect_of(*first);
-            if (!r.hit) continue;
-            const bool inside = !(r.near > min_t);
-            const Real t = inside ? r.far : r.near;
-            if (t > min_t && (best.ellipsoid == nullptr || t < best.t)) best = {&e, t, inside};
+            Real t;
+            bool inside;
+            if (visible_root(intersect_of(*first), beyond, t, inside) &&
+                (best.ellipsoid == nullptr || t < best.t))
+                best = {&e, t, inside};
         }
         return best;
     }

@@ -59,8 +59,7 @@ public:
 
     // The three bytes of the pixel whose eye ray goes from the camera through (x, y).
     void pixel(Real x, Real y, std::uint8_t* out, Scratch& scratch) const {
-        const V colour =
-            trace({}, {x, y, near_z_}, spec::kEyeRayMinT, spec::kMaxReflections, background_, scratch);
+        const V colour = trace({}, {x, y, near_z_}, kEyeRayMinT, kMaxReflections, background_, scratch);
         out[0] = to_byte(colour.x), out[1] = to_byte(colour.y), out[2] = to_byte(colour.z);
     }
 
@@ -124,8 +123,7 @@ private:
         }
         if (reflects) {
             const V mirrored = direction - normal * (2 * dot(normal, direction));
-            colour +=
-                trace(point, mirrored, spec::kReflectedRayMinT, reflections_left - 1, V{}, scratch) * e.kr;
+            colour += trace(point, mirrored, kReflectedRayMinT, reflections_left - 1, V{}, scratch) * e.kr;
         }
         return colour;
     }
