@@ -96,9 +96,10 @@ std::string slow_scene(const std::string& output, int res) {
 }
 
 struct Options {
-    bool named_temporary = false;  // RAYTRACER_NAMED_TEMPORARY: the fallback of other systems
-    long file_size_limit = -1;     // RLIMIT_FSIZE in bytes; -1: none
-    int stderr_fd = -1;            // where the child's stderr goes; -1: the capture file
+    bool named_temporary = false;   // RAYTRACER_NAMED_TEMPORARY: the fallback of other systems
+    long file_size_limit = -1;      // RLIMIT_FSIZE in bytes; -1: none
+    int stderr_fd = -1;             // where the child's stderr goes; -1: the capture file
+    long address_space_limit = -1;  // RLIMIT_AS in bytes; -1: none
 };
 
 // Starts raytracer.exe with args in folder.work; stdout and stderr go to files in root.
@@ -124,6 +125,11 @@ pid_t start(const Scratch& folder, const std::vector<std::string>& args, const O
         const rlimit limit{static_cast<rlim_t>(options.file_size_limit),
                            static_cast<rlim_t>(options.file_size_limit)};
         setrlimit(RLIMIT_FSIZE, &limit);
+    }
+    if (options.address_space_limit >= 0) {
+        const rlimit limit{static_cast<rlim_t>(options.address_space_limit),
+                           static_cast<rlim_t>(options.address_space_limit)};
+        setrlimit(RLIMIT_AS, &limit);
     }
     if (options.named_temporary) setenv("RAYTRACER_NAMED_TEMPORARY", "1", 1);
     execv(argv[0], argv.data());
@@ -217,6 +223,39 @@ TEST(a_file_size_limit_is_a_failed_write) {
         CHECK_EQ(read_bytes(folder.work / "out.ppm"), kPrecious);
     }
 }
+
+// The sanitizers reserve terabytes of address space: no limit can be set under them.
+#if defined(__SANITIZE_ADDRESS__)
+#define RAYTRACER_UNDER_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define RAYTRACER_UNDER_ASAN 1
+#endif
+#endif
+
+#ifndef RAYTRACER_UNDER_ASAN
+// Memory runs out for 20,000 ellipsoids on a tiny image: the message names the scene's
+// size, not "a smaller RES", and nothing is written.
+TEST(out_of_memory_names_the_scene_size) {
+    const Scratch folder;
+    std::string scene =
+        "NEAR 1\nLEFT -1\nRIGHT 1\nBOTTOM -1\nTOP 1\nRES 50 50\nBACK 0 0 0\nAMBIENT 0.2 0.2 0.2\nOUTPUT "
+        "oom.ppm\n";
+    for (int i = 0; i < 20000; ++i)
+        scene += "SPHERE s" + std::to_string(i) + " " + std::to_string((i % 200) / 20.0 - 5) +
+                 " 0 -10 0.01 0.01 0.01 1 1 1 0.2 0.5 0.5 0.5 10\n";
+    for (int i = 0; i < 200; ++i)
+        scene += "LIGHT l" + std::to_string(i) + " " + std::to_string(i / 20.0 - 5) + " 5 0 0.01 0.01 0.01\n";
+    write_bytes(folder.work / "oom.txt", scene);
+    Options options;
+    options.address_space_limit = 48L << 20;  // the render needs about 275 MB
+    CHECK_EQ(run(folder, {"oom.txt"}, options), 4);
+    CHECK_EQ(captured_stderr(folder),
+             std::string("raytracer.exe: error: out of memory rendering 'oom.txt' (RES 50 50, "
+                         "20000 ellipsoids, 200 lights), expected a smaller scene\n"));
+    CHECK_EQ(folder.names(), std::string("oom.txt"));
+}
+#endif
 
 // A replaced image keeps the permissions of the file it replaces; a new one gets the
 // usual 0666 less the umask.
