@@ -108,9 +108,7 @@ int render(const rt::CommandLine& line, const rt::Scene& scene) {
         const bool progress =
             line.progress == rt::CommandLine::Progress::Always ||
             (line.progress == rt::CommandLine::Progress::WhenTerminal && rt::stderr_is_terminal());
-        rt::ProgressSink sink(
-            writer, static_cast<std::size_t>(scene.columns) * static_cast<std::size_t>(scene.rows) * 3,
-            progress);
+        rt::ProgressSink sink(writer, scene.rows, progress);
         rt::render_to<double>(scene, sink, line.threads);
         sink.finish();
         error = writer.commit();

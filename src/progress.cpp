@@ -42,17 +42,16 @@ bool stderr_is_terminal() {
 #endif
 }
 
-ProgressSink::ProgressSink(RowSink& inner, std::size_t total_bytes, bool enabled)
+ProgressSink::ProgressSink(RowSink& inner, int total_rows, bool enabled)
     : inner_(inner),
-      total_(total_bytes),
+      total_(total_rows),
       enabled_(enabled),
       start_(std::chrono::steady_clock::now()),
       next_draw_(start_ + kFirstAfter) {}
 
-void ProgressSink::rows(const std::uint8_t* bytes, std::size_t size) {
-    inner_.rows(bytes, size);
+void ProgressSink::rows_finished(int count) {
     if (!enabled_) return;
-    done_ += size;
+    done_ = count;
     const auto now = std::chrono::steady_clock::now();
     if (now < next_draw_ || done_ >= total_) return;
     next_draw_ = now + kRedrawEvery;
@@ -61,7 +60,7 @@ void ProgressSink::rows(const std::uint8_t* bytes, std::size_t size) {
 
 void ProgressSink::draw(std::chrono::steady_clock::duration elapsed) {
     const double spent = std::chrono::duration<double>(elapsed).count();
-    const double fraction = total_ == 0 ? 1.0 : static_cast<double>(done_) / static_cast<double>(total_);
+    const double fraction = total_ <= 0 ? 1.0 : static_cast<double>(done_) / static_cast<double>(total_);
     const double left = fraction > 0 ? spent * (1 - fraction) / fraction : 0;
     char line[96];
     (void)std::snprintf(line, sizeof line, "\rraytracer.exe: %3d%% of rows, %s elapsed, about %s left ",
