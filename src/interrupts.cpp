@@ -4,6 +4,7 @@
 #include <csignal>
 #include <cstddef>
 #include <cstring>
+#include <cwchar>
 #include <initializer_list>
 
 #ifdef _WIN32
@@ -21,7 +22,10 @@ namespace {
 // so the handler never sees half a path.
 constexpr std::size_t kMaxPath = 4096;
 char cleanup_path[kMaxPath];
-volatile std::sig_atomic_t cleanup_set = 0;
+#ifdef _WIN32
+wchar_t cleanup_wide_path[kMaxPath];
+#endif
+volatile std::sig_atomic_t cleanup_set = 0;  // 1: cleanup_path, 2: cleanup_wide_path
 volatile std::sig_atomic_t erase_line = 0;
 
 void say(const char* text) {
@@ -33,13 +37,12 @@ void say(const char* text) {
 }
 
 extern "C" void on_interrupt(int signal_number) {
-    if (cleanup_set != 0) {
 #ifdef _WIN32
-        (void)_unlink(cleanup_path);
+    if (cleanup_set == 1) (void)_unlink(cleanup_path);
+    if (cleanup_set == 2) (void)_wunlink(cleanup_wide_path);
 #else
-        (void)unlink(cleanup_path);
+    if (cleanup_set != 0) (void)unlink(cleanup_path);
 #endif
-    }
     if (erase_line != 0)
         say("\r                                                                               \r");
     const char* name = "a signal";
@@ -72,9 +75,10 @@ void install_interrupt_handlers() {
 #endif
 }
 
+void clear_interrupt_cleanup() { cleanup_set = 0; }
+
 bool set_interrupt_cleanup(const char* path) {
     cleanup_set = 0;
-    if (path == nullptr) return true;
     const std::size_t length = std::strlen(path);
     if (length >= kMaxPath) return false;
     std::memcpy(cleanup_path, path, length + 1);
@@ -82,6 +86,18 @@ bool set_interrupt_cleanup(const char* path) {
     cleanup_set = 1;
     return true;
 }
+
+#ifdef _WIN32
+bool set_interrupt_cleanup(const wchar_t* path) {
+    cleanup_set = 0;
+    const std::size_t length = std::wcslen(path);
+    if (length >= kMaxPath) return false;
+    std::wmemcpy(cleanup_wide_path, path, length + 1);
+    std::atomic_signal_fence(std::memory_order_seq_cst);  // the path is complete before the flag
+    cleanup_set = 2;
+    return true;
+}
+#endif
 
 void set_interrupt_erases_line(bool erase) { erase_line = erase ? 1 : 0; }
 

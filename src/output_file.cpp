@@ -170,7 +170,7 @@ void PendingFile::open_named(const fs::path& folder) {
     fd_ = ::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
     if (fd_ < 0) {
         const int error = errno;
-        (void)set_interrupt_cleanup(nullptr);
+        clear_interrupt_cleanup();
         error_ = cannot_create(name_, folder, error);
         return;
     }
@@ -208,6 +208,7 @@ bool PendingFile::link_unnamed(std::string& error) {
     if (const int failed = link_as(temporary_); failed != 0) {
         error = std::strerror(failed);
         temporary_.clear();
+        clear_interrupt_cleanup();
         return false;
     }
     return replace_file(temporary_, target_, error);
@@ -265,15 +266,14 @@ bool PendingFile::open_unnamed(const fs::path& /*folder*/) { return false; }
 
 void PendingFile::open_named(const fs::path& folder) {
     temporary_ = temporary_name_in(folder);
-    // The handler removes it by its narrow name: the temporary's own name is ASCII.
-    if (!set_interrupt_cleanup(temporary_.string().c_str())) {
+    if (!set_interrupt_cleanup(temporary_.c_str())) {
         error_ = shown(name_, kMaxShownPath) + " cannot be created: its path is too long";
         return;
     }
     file_ = _wfopen(temporary_.c_str(), L"wb");  // wide names: any Unicode path
     if (file_ == nullptr) {
         const int error = errno;
-        (void)set_interrupt_cleanup(nullptr);
+        clear_interrupt_cleanup();
         error_ = cannot_create(name_, folder, error);
         return;
     }
@@ -325,7 +325,7 @@ void PendingFile::discard() {
     if (!temporary_.empty()) {
         std::error_code ignored;
         fs::remove(temporary_, ignored);
-        (void)set_interrupt_cleanup(nullptr);
+        clear_interrupt_cleanup();
     }
 }
 
@@ -361,7 +361,7 @@ std::string PendingFile::commit() {
             error = shown(name_, kMaxShownPath) + " cannot be replaced: " + error;
     }
     if (error.empty()) {
-        (void)set_interrupt_cleanup(nullptr);
+        clear_interrupt_cleanup();
         temporary_.clear();  // it is the target now
     }
     discard();
