@@ -1,5 +1,6 @@
 #include "raytracer/output_policy.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <system_error>
 
@@ -80,6 +81,22 @@ std::string outside_working_folder(const std::string& output) {
         if (part == "..")
             return shown(output, kMaxShownPath) +
                    " leaves the working folder ('..'), expected a file name in or below it" + elsewhere;
+    // A folder on the way may be a symbolic link out of the working folder. Asked of the
+    // file system only for names with a folder (a bare file name costs nothing).
+    if (path.has_parent_path()) {
+        std::error_code ec, ec2;
+        const fs::path folder = fs::canonical(path.parent_path(), ec);
+        const fs::path working = fs::canonical(fs::current_path(ec2), ec2);
+        if (!ec && !ec2) {
+            const auto [mismatch, ignored] =
+                std::mismatch(working.begin(), working.end(), folder.begin(), folder.end());
+            if (mismatch != working.end())
+                return shown(output, kMaxShownPath) +
+                       " leaves the working folder through a symbolic link, expected a file name in or below "
+                       "it" +
+                       elsewhere;
+        }
+    }
     return {};
 }
 

@@ -340,6 +340,26 @@ TEST(output_naming_the_scene_through_a_link_is_refused) {
     CHECK_EQ(read_bytes(folder.work / "scene.txt"), scene);
 }
 
+// A folder on the way that is a symbolic link out of the working folder is outside it.
+TEST(a_symbolic_link_out_of_the_working_folder_is_outside_it) {
+    const Scratch folder;
+    fs::create_directories(folder.root / "elsewhere");
+    fs::create_directory_symlink(folder.root / "elsewhere", folder.work / "escape");
+    fs::create_directories(folder.work / "inside");
+    fs::create_directory_symlink("inside", folder.work / "alias");
+    write_bytes(folder.work / "scene.txt", small_scene("escape/out.ppm"));
+    CHECK_EQ(run(folder, {"scene.txt"}), 3);
+    CHECK(captured_stderr(folder).find(
+              "OUTPUT 'escape/out.ppm' leaves the working folder through a symbolic link") !=
+          std::string::npos);
+    CHECK(fs::is_empty(folder.root / "elsewhere"));
+    CHECK_EQ(run(folder, {"scene.txt", "-o", "escape/out.ppm"}), 0);  // the user may
+    CHECK(fs::exists(folder.root / "elsewhere" / "out.ppm"));
+    write_bytes(folder.work / "scene.txt", small_scene("alias/out.ppm"));  // a link that stays inside
+    CHECK_EQ(run(folder, {"scene.txt"}), 0);
+    CHECK(fs::exists(folder.work / "inside" / "out.ppm"));
+}
+
 // On a terminal, a render past a second shows one line kept up to date, erased at the
 // end: no newline at all. The terminal is a pseudo-terminal the test reads.
 TEST(a_long_render_shows_progress_on_a_terminal_only) {
