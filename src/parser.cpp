@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include "raytracer/scene_error.h"
+#include "raytracer/shown.h"
 
 namespace rt {
 namespace {
@@ -22,29 +24,6 @@ namespace {
 // Field separators within a line (CR and LF end lines).
 bool is_separator(char c) { return c == ' ' || c == '\t' || c == '\v' || c == '\f'; }
 bool is_digit(char c) { return c >= '0' && c <= '9'; }
-
-// A token as it may appear in a message: control and non-ASCII bytes escaped, and
-// long tokens cut, so one bad byte or a 200 KB token still gives a one-line message.
-std::string shown(std::string_view token) {
-    constexpr std::size_t kMaxShown = 40;
-    std::string out = "'";
-    for (std::size_t i = 0; i < token.size() && i < kMaxShown; ++i) {
-        const auto c = static_cast<unsigned char>(token[i]);
-        if (c >= 0x20 && c < 0x7f) {
-            out += static_cast<char>(c);
-        } else {
-            static const char* const hex = "0123456789abcdef";
-            out += "\\x";
-            out += hex[c >> 4];
-            out += hex[c & 15];
-        }
-    }
-    if (token.size() > kMaxShown)
-        out += "...' (" + std::to_string(token.size()) + " characters)";
-    else
-        out += "'";
-    return out;
-}
 
 // Decimal numbers only: [+-] digits [. digits] [(e|E) [+-] digits], with at least one
 // digit before or after the point. strtod alone would also take hex, "inf" and "nan".
@@ -193,6 +172,10 @@ public:
             ++line_number;
             // A line ends at LF, CR LF, or a lone CR (old Mac files): each counts as one line.
             const std::size_t end = split_line(text, tokens_);
+            // A NUL byte never occurs in a text file; say so rather than "unknown keyword".
+            // Checked line by line, so that the first mistake in the file is the one reported.
+            if (text.substr(0, end).find('\0') != std::string_view::npos)
+                fail(line_number, "a NUL byte (a binary file?), expected a text scene file");
             statement(tokens_, line_number);
             std::size_t next = end == text.size() ? end : end + 1;
             if (end < text.size() && text[end] == '\r' && next < text.size() && text[next] == '\n') ++next;
@@ -361,18 +344,25 @@ Scene load_scene(const std::string& path) {
     // C stdio rather than an ifstream, and the file system asked only when the file
     // cannot be read: an ifstream's first use sets up locale facets, and the two status
     // queries cost system calls; together 0.1 ms of a 2 ms run (docs/speed.md).
-    auto cannot_read = [&path](bool opened) {
+    auto cannot_read = [&path](bool opened, int error) {
         std::error_code ec;
         // Where a folder opens (Linux), reading it fails.
         if (std::filesystem::is_directory(path, ec))
             return SceneError(path, 0, "is a directory, expected a scene file");
+        if (!opened && error == ENOENT) return SceneError(path, 0, "does not exist, expected a scene file");
+        if (!opened && error == EACCES)
+            return SceneError(
+                path, 0, "cannot be opened for reading: permission denied, expected a readable scene file");
         if (!opened && !std::filesystem::exists(path, ec))
             return SceneError(path, 0, "does not exist, expected a scene file");
-        return opened ? SceneError(path, 0, "could not be read, expected a readable scene file")
-                      : SceneError(path, 0, "cannot be opened for reading, expected a readable scene file");
+        const std::string cause = error != 0 ? std::string(": ") + std::strerror(error) : std::string();
+        return opened
+                   ? SceneError(path, 0, "could not be read" + cause + ", expected a readable scene file")
+                   : SceneError(path, 0,
+                                "cannot be opened for reading" + cause + ", expected a readable scene file");
     };
     const std::unique_ptr<std::FILE, int (*)(std::FILE*)> in(std::fopen(path.c_str(), "rb"), &std::fclose);
-    if (!in) throw cannot_read(false);
+    if (!in) throw cannot_read(false, errno);
     std::string text;
     // Reserved at the file's size where the system tells it (one allocation, not a
     // doubling string's: a 26 MB scene then peaks at 26 MB, not 48).
@@ -388,18 +378,12 @@ Scene load_scene(const std::string& path) {
                 "is larger than " + std::to_string(kMaxSceneFileBytes >> 20) + " MiB, expected a scene file");
         }
     }
-    if (std::ferror(in.get()) != 0) throw cannot_read(true);
+    if (std::ferror(in.get()) != 0) throw cannot_read(true, errno);
     if (text.find_first_not_of(" \t\r\n\v\f") == std::string::npos)
         throw SceneError(path, 0, "is empty, expected a scene file");
     // Windows editors may save UTF-16, whose ASCII letters come with NUL bytes between.
     if (text.rfind("\xFF\xFE", 0) == 0 || text.rfind("\xFE\xFF", 0) == 0)
         throw SceneError(path, 0, "is UTF-16 text, expected ASCII or UTF-8 text");
-    // A NUL byte never occurs in a text file; say so rather than "unknown keyword".
-    if (const std::size_t nul = text.find('\0'); nul != std::string::npos) {
-        const int line =
-            1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(nul), '\n'));
-        throw SceneError(path, line, "a NUL byte (a binary file?), expected a text scene file");
-    }
     return parse_scene(text, path);
 }
 

@@ -88,7 +88,7 @@ std::chrono::microseconds worth_helping() {
 
 template <typename Real>
 void render_to(const Scene& scene, RowSink& sink, unsigned threads, bool accelerate) {
-    if (accelerate && scene.spheres.size() > kFlatSweepEllipsoids)
+    if (accelerate && takes_the_tree(scene.spheres.size(), scene.lights.size()))
         return render_whitted_to<Real>(scene, sink, threads);
     const Tracer<Real> tracer(scene, accelerate);
 

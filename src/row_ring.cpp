@@ -35,6 +35,7 @@ RowRing::RowRing(RowSink& sink, int rows, std::size_t row_bytes, int band_rows, 
 void RowRing::hand_over(int at_least) {
     int from = written_.load(std::memory_order_relaxed), end = from;
     while (end < rows_ && finished_[static_cast<std::size_t>(end)].load(std::memory_order_acquire)) ++end;
+    sink_.rows_finished(end);
     if (end - from < std::max(1, at_least)) return;
     while (from < end) {  // in one piece, or two where the ring wraps
         const int to = std::min(end, (from / ring_rows_ + 1) * ring_rows_);

@@ -178,12 +178,23 @@ int main(int argc, char** argv) {
         const std::string path = (bad / e.file).string();
         run_case(raytracer, scratch, {e.file, {path}, e, path});
     }
+    // output_absolute.txt names a file outside the working folder, output_dot_dot.txt
+    // the folder above it: neither may appear.
+    expect(!fs::exists("/tmp/raytracer-bad-input-absolute.ppm"), "output_absolute.txt",
+           "the file was written");
+    expect(!fs::exists(scratch / "output_dot_dot.txt" / "out.ppm"), "output_dot_dot.txt",
+           "the file was written");
 
     // The command line, and files that are not scene files at all.
     const std::string good = (bad / "control_good.txt").string();
     const std::string good_text = run_program::read_file(good);
     run_case(raytracer, scratch, {"no-argument", {}, {"", 2, 0, "no scene file given"}, ""});
     run_case(raytracer, scratch, {"two-arguments", {good, good}, {"", 2, 0, "more than one argument"}, ""});
+    run_case(raytracer, scratch,
+             {"unknown-option", {"--foo", good}, {"", 2, 0, "unknown option '--foo'"}, ""});
+    run_case(raytracer, scratch, {"threads-after-the-scene", {good, "--threads", "2"}, {"", 0, 0, ""}, ""});
+    run_case(raytracer, scratch, {"threads-with-equals", {"--threads=2", good}, {"", 0, 0, ""}, ""});
+
     run_case(raytracer, scratch, {"empty-argument", {""}, {"", 2, 0, "an empty scene file name"}, ""});
     const std::string missing = (scratch / "no-such-scene.txt").string();
     run_case(raytracer, scratch, {"missing-file", {missing}, {"", 1, 0, "does not exist"}, missing});

@@ -95,7 +95,11 @@ TEST(a_pending_file_appears_only_when_committed) {
     {
         rt::PendingFile file(dir.file("a.ppm").c_str());
         CHECK_EQ(file.error(), std::string());
+#ifdef __linux__
+        CHECK_EQ(dir.entries(), 1U);  // the old image only: the new file has no name yet (O_TMPFILE)
+#else
         CHECK_EQ(dir.entries(), 2U);  // the old image and the temporary
+#endif
         file.write("abc", 3);
     }  // not committed
     CHECK_EQ(dir.entries(), 1U);

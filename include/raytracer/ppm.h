@@ -1,52 +1,18 @@
 // Binary (P6) and text (P3) PPM files. The save functions keep the handout's template
 // signatures (width, height, file name, pixels: width*height*3 bytes, top row first),
 // but report failure instead of printing it, and never leave a partial file: they
-// write a temporary file beside the target and rename it into place when complete.
+// write through a PendingFile (output_file.h), put in place only when complete.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
-#include <cstdio>
-#include <filesystem>
 #include <string>
 
 #include "raytracer/image.h"
+#include "raytracer/output_file.h"
 #include "raytracer/row_sink.h"
 
 namespace rt {
-
-// A file written in two steps, for writing an image that is still to be rendered: the
-// constructor creates a temporary file beside the target, so that an unwritable target
-// is known before the render and only one file is ever created; commit() closes it
-// and renames it over the target. A file not committed (an error, an exception during
-// the render) is removed by the destructor, so nothing is left behind.
-class PendingFile {
-public:
-    explicit PendingFile(const char* file_name);
-    PendingFile(const PendingFile&) = delete;
-    PendingFile& operator=(const PendingFile&) = delete;
-    ~PendingFile();
-
-    // Why the temporary file could not be created; empty when it was.
-    const std::string& error() const { return error_; }
-    // Announces the final size, so that the file system allocates it at once: a hint,
-    // ignored where unsupported (see ppm.cpp for why it pays).
-    void expect_size(std::uint64_t bytes);
-    // Appends the bytes (only when error() is empty); a failure is reported by commit().
-    void write(const void* data, std::size_t size);
-    // Closes the temporary file and moves it onto the target. Returns an empty string on
-    // success, else what went wrong; the temporary is removed either way.
-    std::string commit();
-
-private:
-    void discard();
-
-    std::string name_;  // as given, for messages
-    std::filesystem::path target_, temporary_;
-    std::FILE* file_ = nullptr;  // the temporary, while ours
-    bool write_failed_ = false;
-    std::string error_;
-};
 
 // A P6 image written into a pending file as its rows come (a RowSink for render_to()): the
 // header at once, the rows as they come, then commit() checks that all came and

@@ -4,6 +4,8 @@
 // plain tracer makes, byte for byte.
 #pragma once
 
+#include <cstddef>
+
 #include "raytracer/row_sink.h"
 #include "raytracer/scene.h"
 
@@ -17,6 +19,14 @@ namespace rt {
 // 0.07 s flat against 0.05 s here; past a few thousand the flat sweep's tables stop at
 // their limits and it is many times slower (random 4,000: 3.9 s).
 inline constexpr std::size_t kFlatSweepEllipsoids = 512;
+// and while ellipsoids x lights stay below this: the flat sweep keeps tables per
+// ellipsoid and light (about 100 bytes a pair), this path nothing per pair.
+inline constexpr std::size_t kFlatSweepPairs = 65536;
+
+// Whether render_to() takes this path for the scene.
+inline bool takes_the_tree(std::size_t ellipsoids, std::size_t lights) {
+    return ellipsoids > kFlatSweepEllipsoids || ellipsoids * lights > kFlatSweepPairs;
+}
 
 // Instantiated for float, double and long double; threads = 0: all cores.
 template <typename Real>

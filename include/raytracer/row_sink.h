@@ -12,6 +12,10 @@ namespace rt {
 class RowSink {
 public:
     virtual void rows(const std::uint8_t* bytes, std::size_t size) = 0;
+    // The first count rows are finished (perhaps not yet given to rows()): for a progress
+    // display. Called by the thread that writes, under the same rule as rows(), as often
+    // as once per finished row; the default does nothing.
+    virtual void rows_finished(int count) { (void)count; }
 
 protected:
     RowSink() = default;

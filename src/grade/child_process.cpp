@@ -150,7 +150,7 @@ ChildOutcome run_child(const ChildCommand& command) {
 
 namespace {
 
-extern "C" void on_interrupt(int signal) { g_interrupting_signal = signal; }
+extern "C" void grader_on_interrupt(int signal) { g_interrupting_signal = signal; }
 
 // In the forked child: only async-signal-safe calls until execv. On failure the errno goes
 // up the close-on-exec pipe, so that the grader can say why the program did not start.
@@ -176,7 +176,7 @@ void kill_and_reap(pid_t pid, int& status) {
 
 void install_interrupt_handlers() {
     struct sigaction action {};
-    action.sa_handler = on_interrupt;
+    action.sa_handler = grader_on_interrupt;
     sigemptyset(&action.sa_mask);
     sigaction(SIGINT, &action, nullptr);
     sigaction(SIGTERM, &action, nullptr);

@@ -211,3 +211,18 @@ TEST(render_takes_the_tree_past_the_flat_sweep) {
     const rt::Image fast = rt::render<double>(scene, 2, true);
     CHECK(fast.rgb == plain.rgb);
 }
+
+// And past kFlatSweepPairs ellipsoid-light pairs, with few ellipsoids but many lights.
+TEST(render_takes_the_tree_past_the_flat_sweeps_pairs) {
+    rt::Scene scene = scale::random_ellipsoids(100);
+    while (scene.lights.size() * scene.spheres.size() <= rt::kFlatSweepPairs) {
+        rt::LightSpec l = scene.lights[scene.lights.size() % 10];
+        l.position.x += 0.01 * static_cast<double>(scene.lights.size());
+        l.intensity = {0.002, 0.002, 0.002};
+        scene.lights.push_back(l);
+    }
+    CHECK(rt::takes_the_tree(scene.spheres.size(), scene.lights.size()));
+    CHECK(!rt::takes_the_tree(scene.spheres.size(), 10));
+    scene.columns = 31, scene.rows = 23;
+    CHECK(rt::render<double>(scene, 2, true).rgb == rt::render<double>(scene, 1, false).rgb);
+}

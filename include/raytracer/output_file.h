@@ -1,0 +1,71 @@
+// The image's file while it is written: created before the render, so that an
+// unwritable target is known before the render is spent on it, and put in place only
+// when complete, so that no failure or interruption leaves a partial image or touches an
+// existing one.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+namespace rt {
+
+// Where the bytes go.
+enum class Destination {
+    // A new file, or a regular file replaced whole (keeping its permissions) once
+    // complete. On Linux the file is created unnamed (O_TMPFILE) and linked into place
+    // by commit(), so even SIGKILL leaves nothing; elsewhere it is a hidden temporary
+    // beside the target, removed on error and by the interrupt handlers (interrupts.h).
+    Replace,
+    // An existing device or FIFO, written directly (the user named it with -o).
+    WriteInto,
+    // Standard output (-o -).
+    StandardOutput,
+};
+
+class PendingFile {
+public:
+    explicit PendingFile(const char* file_name, Destination destination = Destination::Replace);
+    PendingFile(const PendingFile&) = delete;
+    PendingFile& operator=(const PendingFile&) = delete;
+    ~PendingFile();
+
+    // Why the file could not be created; empty when it was.
+    const std::string& error() const { return error_; }
+    // Announces the final size, so that the file system allocates it at once: a hint,
+    // ignored where unsupported (see output_file.cpp for why it pays).
+    void expect_size(std::uint64_t bytes);
+    // Appends the bytes (only when error() is empty); a failure is reported by commit().
+    void write(const void* data, std::size_t size);
+    // Puts the complete file in place. Returns an empty string on success, else what
+    // went wrong; nothing is left behind either way.
+    std::string commit();
+
+private:
+    void open_replacement();
+    bool open_unnamed(const std::filesystem::path& folder);
+    void open_named(const std::filesystem::path& folder);
+    bool link_unnamed(std::string& error);
+    void discard();
+    void close_file();
+    std::string write_failure() const;
+
+    std::string name_;  // as given, for messages
+    Destination destination_;
+    std::filesystem::path target_, temporary_;  // temporary_: empty while unnamed
+#ifdef _WIN32
+    std::FILE* file_ = nullptr;
+#else
+    int fd_ = -1;
+#endif
+    bool open_ = false;      // the file is ours to write
+    bool unnamed_ = false;   // created with O_TMPFILE: no name until commit()
+    bool replaces_ = false;  // the target existed: it is replaced, not created
+    unsigned keep_mode_ = 0;
+    int write_error_ = 0;  // errno of the first failed write; 0: none
+    std::string error_;
+};
+
+}  // namespace rt

@@ -1,0 +1,42 @@
+// A progress line for long renders: when stderr is a terminal and the render has run
+// past a second, one line kept up to date (percent of rows, elapsed, estimate left),
+// erased at the end. A RowSink in front of the real one, told of finished rows on the
+// thread that writes (row_ring.h): one clock reading per call, a redraw at most four
+// times a second, no locks, no thread of its own.
+#pragma once
+
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+
+#include "raytracer/row_sink.h"
+
+namespace rt {
+
+// Whether stderr is a terminal (one system call).
+bool stderr_is_terminal();
+
+class ProgressSink final : public RowSink {
+public:
+    // enabled = false passes rows through only.
+    ProgressSink(RowSink& inner, int total_rows, bool enabled);
+    void rows(const std::uint8_t* bytes, std::size_t size) override { inner_.rows(bytes, size); }
+    void rows_finished(int count) override;
+    // Erases the line, if one was drawn.
+    void finish();
+
+    // Nothing is shown before this much time, and redraws are at least this far apart.
+    static constexpr std::chrono::milliseconds kFirstAfter{1000}, kRedrawEvery{250};
+
+private:
+    void draw(std::chrono::steady_clock::duration elapsed);
+
+    RowSink& inner_;
+    const int total_;
+    int done_ = 0;
+    const bool enabled_;
+    bool drawn_ = false;
+    std::chrono::steady_clock::time_point start_, next_draw_;
+};
+
+}  // namespace rt

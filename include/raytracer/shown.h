@@ -1,0 +1,23 @@
+// Text from outside (tokens, file names, paths) as it may appear in a one-line message:
+// control and non-ASCII bytes escaped as \xNN, so that a scene cannot reach the terminal
+// with escape sequences, and long values cut, so that a 1 MB name still gives one short
+// line.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <string_view>
+
+namespace rt {
+
+// Tokens are cut at this many bytes, paths at the longer kMaxShownPath.
+inline constexpr std::size_t kMaxShownToken = 40;
+inline constexpr std::size_t kMaxShownPath = 160;
+
+// Escaped and cut, without quotes: "...' (N characters)" marks a cut only in shown().
+std::string escaped(std::string_view text, std::size_t most = kMaxShownPath);
+
+// Quoted, escaped and cut: 'text', or 'first bytes...' (N characters).
+std::string shown(std::string_view text, std::size_t most = kMaxShownToken);
+
+}  // namespace rt

@@ -1,0 +1,134 @@
+#include "raytracer/command_line.h"
+
+#include <cstdlib>
+#include <string_view>
+#include <vector>
+
+#include "raytracer/shown.h"
+
+namespace rt {
+namespace {
+
+constexpr unsigned kMaxThreads = 1024;
+
+bool parse_threads(const std::string& text, unsigned& threads) {
+    if (text.empty() || text.size() > 5) return false;
+    unsigned long n = 0;
+    for (const char c : text) {
+        if (c < '0' || c > '9') return false;
+        n = n * 10 + static_cast<unsigned long>(c - '0');
+    }
+    if (n == 0 || n > kMaxThreads) return false;
+    threads = static_cast<unsigned>(n);
+    return true;
+}
+
+// The options that take a value: their long and short names.
+bool takes_value(std::string_view name) { return name == "--threads" || name == "--output" || name == "-o"; }
+
+struct Parser {
+    CommandLine line;
+    std::vector<std::string> files;
+    bool help = false, version = false;
+
+    bool wrong(const std::string& what) {
+        line.action = CommandLine::Action::Wrong;
+        line.error = what;
+        return false;
+    }
+
+    bool option(std::string_view name, const std::string* value) {
+        if (name == "--threads") {
+            if (!parse_threads(*value, line.threads))
+                return wrong("--threads " + shown(*value) + ", expected a whole number from 1 to 1024");
+        } else if (name == "--output" || name == "-o") {
+            if (value->empty())
+                return wrong(std::string(name) + " with an empty path, expected a file path or -");
+            line.output_given = true;
+            line.output = *value;
+        } else if (name == "--progress") {
+            line.progress = CommandLine::Progress::Always;
+        } else if (name == "--quiet") {
+            line.progress = CommandLine::Progress::Never;
+        } else if (name == "--help" || name == "-h") {
+            help = true;
+        } else if (name == "--version") {
+            version = true;
+        } else {
+            return wrong("unknown option " + shown(name) + ", expected a scene file or a known option");
+        }
+        return true;
+    }
+
+    bool parse(int argc, const char* const* argv) {
+        bool options_ended = false;
+        for (int i = 1; i < argc; ++i) {
+            const std::string arg = argv[i];
+            if (options_ended || arg.size() < 2 || arg[0] != '-') {
+                files.push_back(arg);
+                continue;
+            }
+            if (arg == "--") {
+                options_ended = true;
+                continue;
+            }
+            const std::size_t equals = arg.rfind("--", 0) == 0 ? arg.find('=') : std::string::npos;
+            const std::string name = arg.substr(0, equals);
+            if (!takes_value(name)) {
+                if (equals != std::string::npos)
+                    return wrong(shown(name) + " takes no value, expected " + name);
+                if (!option(name, nullptr)) return false;
+                continue;
+            }
+            std::string value;
+            if (equals != std::string::npos) {
+                value = arg.substr(equals + 1);
+            } else if (i + 1 < argc) {
+                value = argv[++i];
+            } else {
+                std::string what = name;
+                what += " without a value, expected ";
+                what += name;
+                what += name == "--threads" ? " N" : " PATH";
+                return wrong(what);
+            }
+            if (!option(name, &value)) return false;
+        }
+        return true;
+    }
+
+    void decide() {
+        if (help || version) {
+            const bool alone = files.empty() && !line.output_given && line.threads == 0 &&
+                               line.progress == CommandLine::Progress::WhenTerminal && !(help && version);
+            if (!alone) {
+                wrong(std::string(help ? "--help" : "--version") +
+                      " with other arguments, expected it alone or exactly one scene file");
+                return;
+            }
+            line.action = help ? CommandLine::Action::Help : CommandLine::Action::Version;
+            return;
+        }
+        if (files.empty()) {
+            wrong("no scene file given, expected exactly one scene file");
+        } else if (files.size() > 1) {
+            wrong("more than one argument (" + shown(files[0]) + " and " + shown(files[1]) +
+                  "), expected exactly one scene file");
+        } else if (files[0].empty()) {
+            wrong("an empty scene file name, expected exactly one scene file");
+        } else {
+            line.action = CommandLine::Action::Render;
+            line.scene_file = files[0];
+        }
+    }
+};
+
+}  // namespace
+
+CommandLine parse_command_line(int argc, const char* const* argv) {
+    Parser parser;
+    if (parser.parse(argc, argv)) parser.decide();
+    return parser.line;
+}
+
+}  // namespace rt

@@ -1,0 +1,138 @@
+#include "raytracer/output_policy.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <system_error>
+
+#include "raytracer/shown.h"
+
+#ifdef _WIN32
+#ifndef NOMINMAX
+#define NOMINMAX
+#endif
+#include <windows.h>
+#else
+#include <sys/stat.h>
+#endif
+
+namespace rt {
+namespace {
+
+namespace fs = std::filesystem;
+
+// What is at a path now, as far as choosing how to write it goes.
+enum class Existing { Nothing, RegularFile, Folder, Other };
+
+#ifdef _WIN32
+// The same file whatever the names: volume and file index (hard links, case, 8.3 names).
+bool same_file(const std::string& a, const std::string& b) {
+    auto identity = [](const std::string& name, BY_HANDLE_FILE_INFORMATION& info) {
+        const HANDLE h = CreateFileW(fs::u8path(name).c_str(), FILE_READ_ATTRIBUTES,
+                                     FILE_SHARE_READ | FILE_SHARE_WRITE | FILE_SHARE_DELETE, nullptr,
+                                     OPEN_EXISTING, FILE_FLAG_BACKUP_SEMANTICS, nullptr);
+        if (h == INVALID_HANDLE_VALUE) return false;
+        const bool ok = GetFileInformationByHandle(h, &info) != 0;
+        CloseHandle(h);
+        return ok;
+    };
+    BY_HANDLE_FILE_INFORMATION x{}, y{};
+    return identity(a, x) && identity(b, y) && x.dwVolumeSerialNumber == y.dwVolumeSerialNumber &&
+           x.nFileIndexHigh == y.nFileIndexHigh && x.nFileIndexLow == y.nFileIndexLow;
+}
+
+Existing what_is_at(const std::string& path) {
+    std::error_code ec;
+    const fs::file_status status = fs::status(fs::u8path(path), ec);
+    if (ec || status.type() == fs::file_type::not_found) return Existing::Nothing;
+    if (status.type() == fs::file_type::directory) return Existing::Folder;
+    return status.type() == fs::file_type::regular ? Existing::RegularFile : Existing::Other;
+}
+#else
+// The same file whatever the names: device and inode (hard links, symbolic links, ./).
+bool same_file(const std::string& a, const std::string& b) {
+    struct stat x {
+    }, y{};
+    return ::stat(a.c_str(), &x) == 0 && ::stat(b.c_str(), &y) == 0 && x.st_dev == y.st_dev &&
+           x.st_ino == y.st_ino;
+}
+
+Existing what_is_at(const std::string& path) {
+    struct stat s {};
+    if (::stat(path.c_str(), &s) != 0) return Existing::Nothing;
+    if (S_ISDIR(s.st_mode)) return Existing::Folder;
+    return S_ISREG(s.st_mode) ? Existing::RegularFile : Existing::Other;
+}
+#endif
+
+// Why a scene may not name this path, or empty: only names relative to the working
+// folder that stay in it or below.
+std::string outside_working_folder(const std::string& output) {
+    const std::string elsewhere = " (-o PATH on the command line writes anywhere)";
+    fs::path path;
+    try {
+        path = fs::u8path(output);
+    } catch (const std::exception&) {
+        return shown(output, kMaxShownPath) + " is not a usable file name, expected a file name";
+    }
+    if (path.is_absolute() || path.has_root_name() || path.has_root_directory())
+        return shown(output, kMaxShownPath) +
+               " is an absolute path, expected a file name in or below the working folder" + elsewhere;
+    for (const fs::path& part : path)
+        if (part == "..")
+            return shown(output, kMaxShownPath) +
+                   " leaves the working folder ('..'), expected a file name in or below it" + elsewhere;
+    // A folder on the way may be a symbolic link out of the working folder. Asked of the
+    // file system only for names with a folder (a bare file name costs nothing).
+    if (path.has_parent_path()) {
+        std::error_code ec, ec2;
+        const fs::path folder = fs::canonical(path.parent_path(), ec);
+        const fs::path working = fs::canonical(fs::current_path(ec2), ec2);
+        if (!ec && !ec2) {
+            const auto [mismatch, ignored] =
+                std::mismatch(working.begin(), working.end(), folder.begin(), folder.end());
+            if (mismatch != working.end())
+                return shown(output, kMaxShownPath) +
+                       " leaves the working folder through a symbolic link, expected a file name in or below "
+                       "it" +
+                       elsewhere;
+        }
+    }
+    return {};
+}
+
+}  // namespace
+
+OutputChoice choose_output(const std::string& scene_output, const std::string* user_output,
+                           const std::string& scene_file) {
+    OutputChoice choice;
+    choice.named_by_user = user_output != nullptr;
+    choice.path = choice.named_by_user ? *user_output : scene_output;
+    if (choice.named_by_user && choice.path == "-") {
+        choice.destination = Destination::StandardOutput;
+        return choice;
+    }
+    if (!choice.named_by_user) {
+        choice.refusal = outside_working_folder(choice.path);
+        if (!choice.refusal.empty()) return choice;
+    }
+    const Existing existing = what_is_at(choice.path);
+    if (existing == Existing::Nothing || existing == Existing::Folder)
+        return choice;  // a folder: PendingFile says so
+    if (same_file(choice.path, scene_file)) {
+        choice.refusal = shown(choice.path, kMaxShownPath) +
+                         " is the scene file itself, expected another file for the image";
+        return choice;
+    }
+    if (existing == Existing::Other) {
+        if (choice.named_by_user) {
+            choice.destination = Destination::WriteInto;  // a device or FIFO the user chose
+        } else {
+            choice.refusal = shown(choice.path, kMaxShownPath) +
+                             " is not a regular file (a device, FIFO or socket), expected a regular file "
+                             "(-o PATH on the command line writes into it)";
+        }
+    }
+    return choice;
+}
+
+}  // namespace rt

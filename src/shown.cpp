@@ -1,0 +1,40 @@
+#include "raytracer/shown.h"
+
+namespace rt {
+
+namespace {
+
+void append_escaped(std::string& out, std::string_view text, std::size_t most) {
+    static const char* const hex = "0123456789abcdef";
+    for (std::size_t i = 0; i < text.size() && i < most; ++i) {
+        const auto c = static_cast<unsigned char>(text[i]);
+        if (c >= 0x20 && c < 0x7f) {
+            out += static_cast<char>(c);
+        } else {
+            out += "\\x";
+            out += hex[c >> 4];
+            out += hex[c & 15];
+        }
+    }
+}
+
+}  // namespace
+
+std::string escaped(std::string_view text, std::size_t most) {
+    std::string out;
+    append_escaped(out, text, most);
+    if (text.size() > most) out += "... (" + std::to_string(text.size()) + " characters)";
+    return out;
+}
+
+std::string shown(std::string_view text, std::size_t most) {
+    std::string out = "'";
+    append_escaped(out, text, most);
+    if (text.size() > most)
+        out += "...' (" + std::to_string(text.size()) + " characters)";
+    else
+        out += "'";
+    return out;
+}
+
+}  // namespace rt

@@ -1,0 +1,395 @@
+// Faults around a render (issue 17), on the real raytracer.exe started as a child
+// process: signals sent mid-render, a file-size limit, permissions kept, long names,
+// devices and FIFOs, the scene file named as OUTPUT through other names, and the
+// progress line on a pseudo-terminal. POSIX only: the Windows build skips them all.
+#include "check.h"
+
+#ifdef _WIN32
+TEST(posix_faults_are_skipped_on_windows) { std::cout << "skip  faults: POSIX processes and signals\n"; }
+#else
+#include <fcntl.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <random>
+#include <string>
+#include <thread>
+#include <vector>
+
+#ifndef RAYTRACER_EXE
+#error "RAYTRACER_EXE must name the raytracer.exe under test"
+#endif
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// A fresh working folder per test; stderr is captured beside it, not in it.
+struct Scratch {
+    fs::path root, work;
+    Scratch() {
+        std::random_device random;
+        root = fs::temp_directory_path() / ("raytracer-faults-" + std::to_string(random()));
+        work = root / "work";
+        fs::create_directories(work);
+    }
+    Scratch(const Scratch&) = delete;
+    Scratch& operator=(const Scratch&) = delete;
+    ~Scratch() {
+        std::error_code ignored;
+        fs::remove_all(root, ignored);
+    }
+    std::string names() const {
+        std::vector<std::string> all;
+        for (const fs::directory_entry& e : fs::directory_iterator(work)) all.push_back(e.path().filename());
+        std::sort(all.begin(), all.end());
+        std::string joined;
+        for (const std::string& name : all) joined += (joined.empty() ? "" : " ") + name;
+        return joined;
+    }
+};
+
+std::string read_bytes(const fs::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void write_bytes(const fs::path& file, const std::string& bytes) {
+    std::ofstream(file, std::ios::binary) << bytes;
+}
+
+std::string small_scene(const std::string& output) {
+    return "NEAR 1\nLEFT -1\nRIGHT 1\nBOTTOM -1\nTOP 1\nRES 100 100\nSPHERE s 0 0 -5 1 1 1 1 0 0 0.2 0.5 0.5 "
+           "0.2 "
+           "10\nLIGHT l 5 5 0 1 1 1\nBACK 0.5 0.25 1\nAMBIENT 0.2 0.2 0.2\nOUTPUT " +
+           output + "\n";
+}
+
+// 200 ellipsoids and 200 lights scattered by a fixed generator: at RES 400, 2.9 s on the
+// build machine's two cores, 5 s on one, longer under the sanitizers.
+std::string slow_scene(const std::string& output, int res) {
+    std::minstd_rand random(12345);
+    auto u = [&random](double lo, double hi) {
+        return lo + (hi - lo) * static_cast<double>(random()) / static_cast<double>(std::minstd_rand::max());
+    };
+    std::string text = "NEAR 1\nLEFT -1\nRIGHT 1\nBOTTOM -1\nTOP 1\nRES " + std::to_string(res) + " " +
+                       std::to_string(res) + "\nBACK 0.1 0.1 0.1\nAMBIENT 0.2 0.2 0.2\nOUTPUT " + output +
+                       "\n";
+    for (int i = 0; i < 200; ++i)
+        text += "SPHERE s" + std::to_string(i) + " " + std::to_string(u(-4, 4)) + " " +
+                std::to_string(u(-4, 4)) + " " + std::to_string(u(-12, -5)) +
+                " 0.3 0.3 0.3 0.5 0.5 0.5 0.2 0.5 0.5 0.5 10\n";
+    for (int i = 0; i < 200; ++i)
+        text += "LIGHT l" + std::to_string(i) + " " + std::to_string(u(-9, 9)) + " " +
+                std::to_string(u(-9, 9)) + " " + std::to_string(u(-3, 3)) + " 0.01 0.01 0.01\n";
+    return text;
+}
+
+struct Options {
+    bool named_temporary = false;   // RAYTRACER_NAMED_TEMPORARY: the fallback of other systems
+    long file_size_limit = -1;      // RLIMIT_FSIZE in bytes; -1: none
+    int stderr_fd = -1;             // where the child's stderr goes; -1: the capture file
+    long address_space_limit = -1;  // RLIMIT_AS in bytes; -1: none
+};
+
+// Starts raytracer.exe with args in folder.work; stdout and stderr go to files in root.
+pid_t start(const Scratch& folder, const std::vector<std::string>& args, const Options& options = {}) {
+    const std::string out = (folder.root / "stdout").string(), err = (folder.root / "stderr").string();
+    const std::string work = folder.work.string();
+    std::vector<std::string> all = {RAYTRACER_EXE};
+    all.insert(all.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    argv.reserve(all.size() + 1);
+    for (std::string& a : all) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    const pid_t pid = fork();
+    if (pid != 0) return pid;
+    // The child: only calls that are safe after fork, then exec.
+    const int out_fd = open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int err_fd =
+        options.stderr_fd >= 0 ? options.stderr_fd : open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (chdir(work.c_str()) != 0 || out_fd < 0 || err_fd < 0) _exit(126);
+    dup2(out_fd, 1);
+    dup2(err_fd, 2);
+    if (options.file_size_limit >= 0) {
+        const rlimit limit{static_cast<rlim_t>(options.file_size_limit),
+                           static_cast<rlim_t>(options.file_size_limit)};
+        setrlimit(RLIMIT_FSIZE, &limit);
+    }
+    if (options.address_space_limit >= 0) {
+        const rlimit limit{static_cast<rlim_t>(options.address_space_limit),
+                           static_cast<rlim_t>(options.address_space_limit)};
+        setrlimit(RLIMIT_AS, &limit);
+    }
+    if (options.named_temporary) setenv("RAYTRACER_NAMED_TEMPORARY", "1", 1);
+    execv(argv[0], argv.data());
+    _exit(127);
+}
+
+// The exit status, or 1000 + the signal that killed it.
+int wait_for(pid_t pid) {
+    int status = 0;
+    while (waitpid(pid, &status, 0) < 0) {
+    }
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 1000 + WTERMSIG(status);
+}
+
+int run(const Scratch& folder, const std::vector<std::string>& args, const Options& options = {}) {
+    return wait_for(start(folder, args, options));
+}
+
+std::string captured_stderr(const Scratch& folder) { return read_bytes(folder.root / "stderr"); }
+
+bool holds_temporary(const Scratch& folder) {
+    for (const fs::directory_entry& e : fs::directory_iterator(folder.work))
+        if (e.path().filename().string().rfind(".raytracer-", 0) == 0) return true;
+    return false;
+}
+
+const std::string kPrecious = "an existing out.ppm that an interrupted run may not touch\n";
+
+}  // namespace
+
+// SIGINT, SIGTERM and SIGHUP mid-render: exit 128 + the signal, one line, nothing left
+// (not the unnamed file of Linux, nor the named temporary of other systems, which must
+// exist while the render runs for the test to mean anything), out.ppm as it was.
+TEST(an_interrupted_render_leaves_nothing_and_exits_128_plus_the_signal) {
+    for (const bool named : {false, true}) {
+        for (const int signal_number : {SIGINT, SIGTERM, SIGHUP}) {
+            const Scratch folder;
+            write_bytes(folder.work / "slow.txt", slow_scene("out.ppm", 400));
+            write_bytes(folder.work / "out.ppm", kPrecious);
+            Options options;
+            options.named_temporary = named;
+            const pid_t pid = start(folder, {"slow.txt"}, options);
+            bool temporary_seen = false;
+            for (int i = 0; i < 100 && !temporary_seen; ++i) {
+                std::this_thread::sleep_for(std::chrono::milliseconds(5));
+                temporary_seen = holds_temporary(folder);
+            }
+            std::this_thread::sleep_for(std::chrono::milliseconds(300));
+            CHECK_EQ(temporary_seen, named);  // the unnamed file has no name to see
+            kill(pid, signal_number);
+            CHECK_EQ(wait_for(pid), 128 + signal_number);
+            const std::string name = signal_number == SIGINT    ? "SIGINT"
+                                     : signal_number == SIGTERM ? "SIGTERM"
+                                                                : "SIGHUP";
+            CHECK_EQ(captured_stderr(folder),
+                     "raytracer.exe: error: interrupted by " + name + ", no image written\n");
+            CHECK_EQ(folder.names(), std::string("out.ppm slow.txt"));
+            CHECK_EQ(read_bytes(folder.work / "out.ppm"), kPrecious);
+        }
+    }
+}
+
+#ifdef __linux__
+// The file is unnamed until complete (O_TMPFILE), so even SIGKILL leaves nothing.
+TEST(sigkill_mid_render_leaves_nothing_on_linux) {
+    const Scratch folder;
+    write_bytes(folder.work / "slow.txt", slow_scene("new.ppm", 400));
+    const pid_t pid = start(folder, {"slow.txt"});
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    kill(pid, SIGKILL);
+    CHECK_EQ(wait_for(pid), 1000 + SIGKILL);
+    CHECK_EQ(folder.names(), std::string("slow.txt"));
+}
+#endif
+
+// ulimit -f: a failed write like a full disk (exit 3, its cause), not death by SIGXFSZ.
+TEST(a_file_size_limit_is_a_failed_write) {
+    for (const bool named : {false, true}) {
+        const Scratch folder;
+        write_bytes(folder.work / "scene.txt", small_scene("out.ppm"));
+        write_bytes(folder.work / "out.ppm", kPrecious);
+        Options options;
+        options.named_temporary = named;
+        options.file_size_limit = 4096;  // the image is 30,015 bytes
+        CHECK_EQ(run(folder, {"scene.txt"}, options), 3);
+        const std::string err = captured_stderr(folder);
+        CHECK_EQ(err, std::string(
+                          "scene.txt:11: error: OUTPUT 'out.ppm' could not be written in full: the file size "
+                          "limit was reached (ulimit -f), expected a writable file path\n"));
+        CHECK_EQ(folder.names(), std::string("out.ppm scene.txt"));
+        CHECK_EQ(read_bytes(folder.work / "out.ppm"), kPrecious);
+    }
+}
+
+// The sanitizers reserve terabytes of address space: no limit can be set under them.
+#if defined(__SANITIZE_ADDRESS__)
+#define RAYTRACER_UNDER_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define RAYTRACER_UNDER_ASAN 1
+#endif
+#endif
+
+#ifndef RAYTRACER_UNDER_ASAN
+// Memory runs out for 100,000 ellipsoids on a tiny image (the scene is read; the tree
+// and its copy of the ellipsoids do not fit): the message names the scene's size, not
+// "a smaller RES", and nothing is written.
+TEST(out_of_memory_names_the_scene_size) {
+    const Scratch folder;
+    std::string scene =
+        "NEAR 1\nLEFT -1\nRIGHT 1\nBOTTOM -1\nTOP 1\nRES 50 50\nBACK 0 0 0\nAMBIENT 0.2 0.2 0.2\nOUTPUT "
+        "oom.ppm\nLIGHT a 0 5 0 1 1 1\nLIGHT b 5 5 0 1 1 1\n";
+    for (int i = 0; i < 100000; ++i)
+        scene += "SPHERE s " + std::to_string((i % 200) / 20.0 - 5) +
+                 " 0 -10 0.01 0.01 0.01 1 1 1 0.2 0.5 0.5 0.5 10\n";
+    write_bytes(folder.work / "oom.txt", scene);
+    Options options;
+    options.address_space_limit = 48L << 20;  // reading takes about 25 MB, the render about 60 MB more
+    CHECK_EQ(run(folder, {"oom.txt"}, options), 4);
+    CHECK_EQ(captured_stderr(folder),
+             std::string("raytracer.exe: error: out of memory rendering 'oom.txt' (RES 50 50, "
+                         "100000 ellipsoids, 2 lights), expected a smaller scene\n"));
+    CHECK_EQ(folder.names(), std::string("oom.txt"));
+}
+#endif
+
+// A replaced image keeps the permissions of the file it replaces; a new one gets the
+// usual 0666 less the umask.
+TEST(a_replaced_file_keeps_its_mode) {
+    for (const bool named : {false, true}) {
+        for (const fs::perms mode :
+             {fs::perms::owner_read | fs::perms::owner_write,
+              fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read}) {
+            const Scratch folder;
+            write_bytes(folder.work / "scene.txt", small_scene("out.ppm"));
+            write_bytes(folder.work / "out.ppm", kPrecious);
+            fs::permissions(folder.work / "out.ppm", mode);
+            Options options;
+            options.named_temporary = named;
+            CHECK_EQ(run(folder, {"scene.txt"}, options), 0);
+            CHECK(fs::status(folder.work / "out.ppm").permissions() == mode);
+            CHECK_EQ(read_bytes(folder.work / "out.ppm").substr(0, 11), std::string("P6\n100 100\n"));
+            CHECK_EQ(folder.names(), std::string("out.ppm scene.txt"));
+        }
+        const Scratch folder;
+        write_bytes(folder.work / "scene.txt", small_scene("new.ppm"));
+        const mode_t mask = umask(0);
+        umask(mask);
+        Options options;
+        options.named_temporary = named;
+        CHECK_EQ(run(folder, {"scene.txt"}, options), 0);
+        CHECK_EQ(static_cast<unsigned>(fs::status(folder.work / "new.ppm").permissions()), 0666U & ~mask);
+    }
+}
+
+// A legal name of 240 bytes: the temporary's name must fit the folder's limit too.
+TEST(a_240_byte_output_name_works) {
+    const std::string name = std::string(236, 'n') + ".ppm";
+    for (const bool named : {false, true}) {
+        const Scratch folder;
+        write_bytes(folder.work / "scene.txt", small_scene(name));
+        Options options;
+        options.named_temporary = named;
+        CHECK_EQ(run(folder, {"scene.txt"}, options), 0);
+        CHECK_EQ(captured_stderr(folder), std::string());
+        CHECK_EQ(read_bytes(folder.work / name).size(), std::size_t{15 + 30000});
+        write_bytes(folder.work / name, kPrecious);  // and replacing it
+        CHECK_EQ(run(folder, {"scene.txt"}, options), 0);
+        CHECK_EQ(read_bytes(folder.work / name).size(), std::size_t{15 + 30000});
+        CHECK_EQ(folder.names(), name + " scene.txt");
+    }
+}
+
+// A scene may not name a device or FIFO (it would replace it, or block); the user may,
+// and the image is written into it.
+TEST(devices_and_fifos_only_when_the_user_names_them) {
+    const Scratch folder;
+    write_bytes(folder.work / "scene.txt", small_scene("fifo"));
+    CHECK(mkfifo((folder.work / "fifo").c_str(), 0644) == 0);
+    CHECK_EQ(run(folder, {"scene.txt"}), 3);
+    CHECK(captured_stderr(folder).find("OUTPUT 'fifo' is not a regular file (a device, FIFO or socket)") !=
+          std::string::npos);
+    CHECK(fs::is_fifo(folder.work / "fifo"));
+
+    CHECK_EQ(run(folder, {"scene.txt", "-o", "/dev/null"}), 0);
+    CHECK(fs::is_character_file("/dev/null"));
+    CHECK_EQ(run(folder, {"scene.txt", "-o", "image.ppm"}), 0);
+    const std::string image = read_bytes(folder.work / "image.ppm");
+    const pid_t pid = start(folder, {"scene.txt", "-o", "fifo"});
+    CHECK_EQ(read_bytes(folder.work / "fifo"), image);  // opens the FIFO's reading end
+    CHECK_EQ(wait_for(pid), 0);
+    CHECK(fs::is_fifo(folder.work / "fifo"));
+    CHECK_EQ(folder.names(), std::string("fifo image.ppm scene.txt"));
+}
+
+// The scene file under another name is still the scene file: device and inode decide.
+TEST(output_naming_the_scene_through_a_link_is_refused) {
+    const Scratch folder;
+    const std::string scene = small_scene("hard.ppm");
+    write_bytes(folder.work / "scene.txt", scene);
+    fs::create_hard_link(folder.work / "scene.txt", folder.work / "hard.ppm");
+    CHECK_EQ(run(folder, {"scene.txt"}), 3);
+    CHECK(captured_stderr(folder).find("OUTPUT 'hard.ppm' is the scene file itself") != std::string::npos);
+    fs::create_symlink("scene.txt", folder.work / "soft.ppm");
+    CHECK_EQ(run(folder, {"scene.txt", "-o", "soft.ppm"}), 3);
+    CHECK(captured_stderr(folder).find("-o 'soft.ppm' is the scene file itself") != std::string::npos);
+    CHECK_EQ(read_bytes(folder.work / "scene.txt"), scene);
+}
+
+// A folder on the way that is a symbolic link out of the working folder is outside it.
+TEST(a_symbolic_link_out_of_the_working_folder_is_outside_it) {
+    const Scratch folder;
+    fs::create_directories(folder.root / "elsewhere");
+    fs::create_directory_symlink(folder.root / "elsewhere", folder.work / "escape");
+    fs::create_directories(folder.work / "inside");
+    fs::create_directory_symlink("inside", folder.work / "alias");
+    write_bytes(folder.work / "scene.txt", small_scene("escape/out.ppm"));
+    CHECK_EQ(run(folder, {"scene.txt"}), 3);
+    CHECK(captured_stderr(folder).find(
+              "OUTPUT 'escape/out.ppm' leaves the working folder through a symbolic link") !=
+          std::string::npos);
+    CHECK(fs::is_empty(folder.root / "elsewhere"));
+    CHECK_EQ(run(folder, {"scene.txt", "-o", "escape/out.ppm"}), 0);  // the user may
+    CHECK(fs::exists(folder.root / "elsewhere" / "out.ppm"));
+    write_bytes(folder.work / "scene.txt", small_scene("alias/out.ppm"));  // a link that stays inside
+    CHECK_EQ(run(folder, {"scene.txt"}), 0);
+    CHECK(fs::exists(folder.work / "inside" / "out.ppm"));
+}
+
+// On a terminal, a render past a second shows one line kept up to date, erased at the
+// end: no newline at all. The terminal is a pseudo-terminal the test reads.
+TEST(a_long_render_shows_progress_on_a_terminal_only) {
+    const int master = posix_openpt(O_RDWR | O_NOCTTY);
+    CHECK(master >= 0 && grantpt(master) == 0 && unlockpt(master) == 0);
+    const int terminal = open(ptsname(master), O_RDWR | O_NOCTTY);
+    CHECK(terminal >= 0);
+    const Scratch folder;
+    // One thread, so that the render takes seconds even on a faster machine.
+    write_bytes(folder.work / "slow.txt", slow_scene("out.ppm", 400));
+    Options options;
+    options.stderr_fd = terminal;
+    const pid_t pid = start(folder, {"--threads", "1", "slow.txt"}, options);
+    close(terminal);
+    std::string shown;
+    char buffer[4096];
+    for (ssize_t got; (got = read(master, buffer, sizeof buffer)) > 0;)
+        shown.append(buffer, static_cast<std::size_t>(got));
+    close(master);
+    CHECK_EQ(wait_for(pid), 0);
+    if (shown.find("% of rows, ") == std::string::npos) std::cout << "on the terminal: '" << shown << "'\n";
+    CHECK(shown.find("% of rows, ") != std::string::npos);
+    CHECK(shown.find(" elapsed, about ") != std::string::npos);
+    CHECK(shown.find('\n') == std::string::npos);
+    CHECK(shown.size() > 2 && shown.substr(shown.size() - 2) == " \r");  // erased: blanks, back to the start
+    CHECK_EQ(read_bytes(folder.work / "out.ppm").size(), std::size_t{15 + 480000});
+
+    // Not a terminal (a grader's pipe or file): nothing, unless --progress forces it.
+    CHECK_EQ(run(folder, {"--threads", "1", "slow.txt"}), 0);
+    CHECK_EQ(captured_stderr(folder), std::string());
+    CHECK_EQ(run(folder, {"--threads=1", "--progress", "slow.txt"}), 0);
+    CHECK(captured_stderr(folder).find("% of rows, ") != std::string::npos);
+}
+#endif  // _WIN32
