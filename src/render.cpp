@@ -57,17 +57,13 @@ constexpr int kTileColumns = kPacket / kTileRows;
 template <typename Real>
 struct Workspace {
     TraceScratch<Real> scratch;
-    std::vector<Span> in_row;             // the row's ellipsoids
-    std::vector<std::uint32_t> in_pixel;  // the pixel's ellipsoids (plain path)
-    std::vector<EyeRowHits<Real>> hits;   // per row of a band: each column's nearest hit (eye_rays.h)
-    std::vector<Packet<Real>> packets;    // per ellipsoid
-    std::vector<std::uint32_t> seen;      // the ellipsoids some row of the band may see (repeats allowed)
+    std::vector<Span> in_row;            // the row's ellipsoids
+    std::vector<EyeRowHits<Real>> hits;  // per row of a band: each column's nearest hit (eye_rays.h)
+    std::vector<Packet<Real>> packets;   // per ellipsoid
+    std::vector<std::uint32_t> seen;     // the ellipsoids some row of the band may see (repeats allowed)
 
     Workspace(const Tracer<Real>& tracer, std::size_t ellipsoids, int columns)
-        : scratch(tracer.make_scratch()),
-          in_pixel(ellipsoids),
-          hits(kTileRows, EyeRowHits<Real>(columns)),
-          packets(ellipsoids) {
+        : scratch(tracer.make_scratch()), hits(kTileRows, EyeRowHits<Real>(columns)), packets(ellipsoids) {
         in_row.reserve(ellipsoids);
         seen.reserve(ellipsoids * kTileRows);
     }
@@ -88,9 +84,10 @@ std::chrono::microseconds worth_helping() {
 
 template <typename Real>
 void render_to(const Scene& scene, RowSink& sink, unsigned threads, bool accelerate) {
-    if (accelerate && takes_the_tree(scene.spheres.size(), scene.lights.size()))
+    if (!accelerate) return render_reference_to<Real>(scene, sink, threads);
+    if (takes_the_tree(scene.spheres.size(), scene.lights.size()))
         return render_whitted_to<Real>(scene, sink, threads);
-    const Tracer<Real> tracer(scene, accelerate);
+    const Tracer<Real> tracer(scene);
 
     const Real left = static_cast<Real>(scene.left), right = static_cast<Real>(scene.right);
     const Real bottom = static_cast<Real>(scene.bottom), top = static_cast<Real>(scene.top);
@@ -130,12 +127,11 @@ void render_to(const Scene& scene, RowSink& sink, unsigned threads, bool acceler
     for (int c = 0; c < scene.columns; ++c)
         column_x[static_cast<std::size_t>(c)] = left + (right - left) * static_cast<Real>(c) / columns;
 
-    // The camera's terms per ellipsoid, for intersecting eye rays many columns at a time
-    // (not used by the plain path).
+    // The camera's terms per ellipsoid, for intersecting eye rays many columns at a time.
     std::vector<Ellipsoid<Real>> ellipsoids;
     std::vector<MappedOrigin<Real>> eye_origins;
     std::vector<int> first_columns, last_columns;
-    for (std::size_t i = 0; accelerate && i < scene.spheres.size(); ++i) {
+    for (std::size_t i = 0; i < scene.spheres.size(); ++i) {
         ellipsoids.push_back(tracer.ellipsoid(i));
         eye_origins.push_back(tracer.eye_origin(i));
         first_columns.push_back(rects[i].first_column);
@@ -148,7 +144,6 @@ void render_to(const Scene& scene, RowSink& sink, unsigned threads, bool acceler
     auto render_rows = [&](int first_row, int end_row, Workspace<Real>& work) {
         TraceScratch<Real>& scratch = work.scratch;
         std::vector<Span>& in_row = work.in_row;
-        std::vector<std::uint32_t>& in_pixel = work.in_pixel;
         int row_lo[kTileRows], row_hi[kTileRows];  // per row, the columns some ellipsoid may cover
         Real row_y[kTileRows];
         work.seen.clear();
@@ -170,19 +165,6 @@ void render_to(const Scene& scene, RowSink& sink, unsigned threads, bool acceler
             }
             // The top-left corner of the pixel, not its centre: the keys demand it.
             const Real y = top - (top - bottom) * static_cast<Real>(r) / rows;
-            if (!accelerate) {
-                // The reference: each pixel on its own, as the plain tracer does.
-                for (int c = lo; c <= hi; ++c) {
-                    std::size_t count = 0;
-                    for (const Span& span : in_row)
-                        if (span.first <= c && c <= span.last) in_pixel[count++] = span.ellipsoid;
-                    if (count == 0) continue;  // the background, already there
-                    const Real x = column_x[static_cast<std::size_t>(c)];
-                    tracer.eye_pixel({x, y, near_z}, in_pixel.data(), in_pixel.data() + count, scratch,
-                                     row_out + static_cast<std::size_t>(c) * 3);
-                }
-                continue;
-            }
             // All columns of each span at once (eye_rays.h).
             EyeRowHits<Real>& hits = work.hits[static_cast<std::size_t>(r - first_row)];
             EyeRays<Real>::clear(hits, lo, hi);
@@ -193,7 +175,6 @@ void render_to(const Scene& scene, RowSink& sink, unsigned threads, bool acceler
             row_lo[r - first_row] = lo, row_hi[r - first_row] = hi, row_y[r - first_row] = y;
             band_lo = std::min(band_lo, lo), band_hi = std::max(band_hi, hi);
         }
-        if (!accelerate) return;
         // The hit pixels, shaded in packets of pixels that see the same ellipsoid
         // (Tracer::eye_hit_pixels(), vector lanes), gathered tile by tile.
         for (int c0 = band_lo; c0 <= band_hi; c0 += kTileColumns)

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <vector>
 
+#include "raytracer/brute_force.h"
 #include "raytracer/bvh.h"
 #include "raytracer/helper_pool.h"
 #include "raytracer/render.h"
@@ -12,9 +13,11 @@
 
 namespace rt {
 
-template <typename Real>
-void render_whitted_to(const Scene& scene, RowSink& sink, unsigned threads) {
-    const Whitted<Real, Bvh<Real>> tracer(scene);
+namespace {
+// Each pixel on its own through Whitted<Real, Geometry>, rows shared by the threads.
+template <typename Real, typename Geometry>
+void render_pixels_to(const Scene& scene, RowSink& sink, unsigned threads) {
+    const Whitted<Real, Geometry> tracer(scene);
     const std::size_t row_bytes = static_cast<std::size_t>(scene.columns) * 3;
     const unsigned count = std::min<unsigned>(threads == 0 ? default_thread_count() : threads,
                                               static_cast<unsigned>(scene.rows));
@@ -51,13 +54,27 @@ void render_whitted_to(const Scene& scene, RowSink& sink, unsigned threads) {
     helpers.finish();
     ring.flush();
 }
+}  // namespace
+
+template <typename Real>
+void render_whitted_to(const Scene& scene, RowSink& sink, unsigned threads) {
+    render_pixels_to<Real, Bvh<Real>>(scene, sink, threads);
+}
+
+template <typename Real>
+void render_reference_to(const Scene& scene, RowSink& sink, unsigned threads) {
+    render_pixels_to<Real, BruteForce<Real>>(scene, sink, threads);
+}
 
 // As in render.cpp: double for raytracer.exe, float and long double for the tests.
 #ifdef RAYTRACER_EXTRA_PRECISIONS
 template void render_whitted_to<float>(const Scene&, RowSink&, unsigned);
 template void render_whitted_to<long double>(const Scene&, RowSink&, unsigned);
+template void render_reference_to<float>(const Scene&, RowSink&, unsigned);
+template void render_reference_to<long double>(const Scene&, RowSink&, unsigned);
 #else
 template void render_whitted_to<double>(const Scene&, RowSink&, unsigned);
+template void render_reference_to<double>(const Scene&, RowSink&, unsigned);
 #endif
 
 }  // namespace rt

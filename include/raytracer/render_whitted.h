@@ -1,7 +1,6 @@
-// Renders through the reference path (whitted.h) with the acceleration layer (bvh.h):
-// each pixel on its own, rows shared by the threads. render_to() takes this path for
-// scenes beyond the flat sweep's size (kFlatSweepEllipsoids); the image is the one the
-// plain tracer makes, byte for byte.
+// Renders through the reference path (whitted.h), each pixel on its own, rows shared by
+// the threads: with the acceleration layer (bvh.h), as render_to() does for scenes
+// beyond the flat sweep's size (takes_the_tree()), or with brute force, the reference.
 #pragma once
 
 #include <cstddef>
@@ -31,5 +30,11 @@ inline bool takes_the_tree(std::size_t ellipsoids, std::size_t lights) {
 // Instantiated for float, double and long double; threads = 0: all cores.
 template <typename Real>
 void render_whitted_to(const Scene& scene, RowSink& sink, unsigned threads = 0);
+
+// The same with BruteForce (every ray against every ellipsoid): the reference, the
+// specification in code, that render(..., accelerate = false) makes and the tests hold
+// every other path to, byte for byte.
+template <typename Real>
+void render_reference_to(const Scene& scene, RowSink& sink, unsigned threads = 0);
 
 }  // namespace rt

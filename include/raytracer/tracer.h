@@ -55,10 +55,9 @@ public:
     using V = Vec3<Real>;
     using C = typename SphereBounds<Real>::C;  // the precision of the culling arithmetic
 
-    // accelerate = false turns off every shortcut (culling, light buffers, prefilter):
-    // each ray is then tested against every ellipsoid with intersect(), the reference
-    // that the tests hold the accelerated images to, byte for byte.
-    explicit Tracer(const Scene& scene, bool accelerate = true)
+    // The reference that the tests hold this tracer's images to, byte for byte, is
+    // whitted.h with brute_force.h (render(..., accelerate = false)).
+    explicit Tracer(const Scene& scene)
         : ambient_(V::from(scene.ambient)), background_(V::from(scene.background)) {
         ellipsoids_.reserve(scene.spheres.size());
         for (const SphereSpec& s : scene.spheres) ellipsoids_.push_back(make_ellipsoid<Real>(s));
@@ -80,19 +79,14 @@ public:
             surface.bytes[2] = to_byte(surface.ambient.z);
             surfaces_.push_back(surface);
         }
-        background_bytes_[0] = to_byte(background_.x);
-        background_bytes_[1] = to_byte(background_.y);
-        background_bytes_[2] = to_byte(background_.z);
         // Per ellipsoid and light, Ip*Kd and Ip*Ks: the first products of the handout's
         // terms, computed once instead of per hit (the same operations, so the same bits).
         for (const Ellipsoid<Real>& e : ellipsoids_)
             for (const PointLight<Real>& l : lights_)
                 light_terms_.push_back({l.intensity * e.kd, l.intensity * e.ks});
-        bounds_ = SphereBounds<Real>(ellipsoids_, light_positions, accelerate);
+        bounds_ = SphereBounds<Real>(ellipsoids_, light_positions);
         bounds_.prepare(V{}, eye_terms_);  // every eye ray starts at the camera
         for (const Ellipsoid<Real>& e : ellipsoids_) eye_origin_.push_back(mapped_origin(e, V{}));
-        accelerate_ = accelerate;
-        if (!accelerate) return;
         // guarded: light buffers and packet shadows apply. Light buffers pay when there
         // are more shadow rays than cells, and are not built where their tables would be
         // huge (thousands of lights and ellipsoids), nor where no eye ray can hit
@@ -146,12 +140,11 @@ public:
     V trace_eye_ray(const V& direction, TraceScratch<Real>& scratch) const {
         return trace(V{}, eye_terms_, direction, Real(kEyeRayMinT), kMaxReflections, background_, scratch);
     }
-    // Per ellipsoid, the pixels outside which no eye ray meets it (screen_bounds.h);
-    // the whole screen for each when not accelerating.
+    // Per ellipsoid, the pixels outside which no eye ray meets it (screen_bounds.h).
     std::vector<PixelRect> screen_rects(const Scene& scene) const {
         std::vector<bool> usable;
         for (std::size_t i = 0; i < bounds_.size(); ++i)
-            usable.push_back(accelerate_ && bounds_.guards({0, 0, 0}, {0, 0, 0}, i));
+            usable.push_back(bounds_.guards({0, 0, 0}, {0, 0, 0}, i));
         return screen_bounds(scene, bounds_.spheres(), usable);
     }
 
@@ -162,26 +155,12 @@ public:
         bool inside = false;  // the far root was taken: the ray sees the inner surface
     };
 
-    // The same, written as the pixel's three bytes (to_byte()). A surface that no light
-    // and no reflection changes (Kd = Ks = 0, Kr = 0) shows its ambient term alone, so
-    // its bytes are computed once per ellipsoid (the same to_byte() of the same colour).
-    void eye_pixel(const V& direction, const std::uint32_t* first, const std::uint32_t* last,
-                   TraceScratch<Real>& scratch, std::uint8_t* out) const {
-        const Hit hit = closest(first, last, Real(kEyeRayMinT), [&](std::uint32_t i) {
-            return intersect_mapped(ellipsoids_[i], eye_origin_[i], direction);
-        });
-        if (hit.ellipsoid == nullptr) {
-            out[0] = background_bytes_[0], out[1] = background_bytes_[1], out[2] = background_bytes_[2];
-            return;
-        }
-        const auto i = static_cast<std::uint32_t>(hit.ellipsoid - ellipsoids_.data());
-        eye_hit_pixel(i, hit.t, hit.inside, direction, scratch, out);
-    }
-
     // The three bytes of a pixel whose eye ray (from the camera along direction) was found
     // by the caller to hit ellipsoid i first at t (inside: the far root was taken), as
-    // eye_pixel() would write them. For renderers that intersect eye rays themselves,
-    // e.g. many pixels at once, with the operations of intersect_mapped().
+    // to_byte() of trace_eye_ray(). For renderers that intersect eye rays themselves,
+    // e.g. many pixels at once, with the operations of intersect_mapped(). A surface that
+    // no light and no reflection changes (Kd = Ks = 0, Kr = 0) shows its ambient term
+    // alone, so its bytes are computed once per ellipsoid.
     void eye_hit_pixel(std::uint32_t i, Real t, bool inside, const V& direction, TraceScratch<Real>& scratch,
                        std::uint8_t* out) const {
         const Surface& surface = surfaces_[i];
@@ -242,7 +221,7 @@ public:
         for (std::size_t i = 0; i < ellipsoids_.size(); ++i) {
             centres.push_back(Vec3<C>::from(ellipsoids_[i].centre));
             scales.push_back(Vec3<C>::from(ellipsoids_[i].scale));
-            usable.push_back(accelerate_ && bounds_.guards({0, 0, 0}, {0, 0, 0}, i));
+            usable.push_back(bounds_.guards({0, 0, 0}, {0, 0, 0}, i));
         }
         return RowSpans<C>(scene, centres, scales, usable);
     }
@@ -829,7 +808,6 @@ private:
         std::uint8_t bytes[3];  // to_byte() of the ambient term
         std::int32_t exponent;  // whole_exponent(n): -1 when pow() is needed
     };
-    std::uint8_t background_bytes_[3] = {};
     std::vector<Surface> surfaces_;  // per ellipsoid
     SphereBounds<Real> bounds_;
     typename SphereBounds<Real>::OriginTerms eye_terms_;
@@ -840,7 +818,6 @@ private:
     ShadowPrefilter<Real> prefilter_;
     PairBlockers<Real> pair_blockers_;  // where packet_shadows_
     LightCones<C> light_cones_;         // where packet_shadows_
-    bool accelerate_ = true;
     std::vector<DirectionGrid<C>> light_grids_;
     V ambient_;
     V background_;

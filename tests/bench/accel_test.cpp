@@ -1,13 +1,12 @@
-// The acceleration layer (bvh.h) and the reference path (whitted.h) change no byte:
+// The acceleration layer (bvh.h) changes no byte:
 // - every Bvh query answers as BruteForce, the definition, bit for bit, on random
 //   ellipsoid sets built to stress the boxes' margins (thin, far, tiny, huge,
 //   negative-scaled, coincident and touching ellipsoids; rays from the camera, from
 //   surface points and towards lights, grazing ones among them);
-// - Whitted<BruteForce> renders every scene file and random scene as the plain tracer
-//   (render(..., accelerate = false)) does: the reference path is the specification;
 // - the tree's path (render_whitted_to(), which render() takes past
-//   kFlatSweepEllipsoids) renders large scenes and every scene file as the plain tracer,
-//   in float, double and long double and for any number of threads.
+//   takes_the_tree()) renders large scenes and every scene file as the reference
+//   (render(..., accelerate = false): whitted.h with brute_force.h), in float, double
+//   and long double and for any number of threads.
 #include <cstdint>
 #include <filesystem>
 #include <iostream>
@@ -105,7 +104,7 @@ struct ImageSink final : rt::RowSink {
 };
 
 // The tree's path (render_whitted_to(), which render() takes past
-// kFlatSweepEllipsoids) against the plain tracer.
+// takes_the_tree()) against the reference.
 template <typename Real>
 bool renders_as_plain(const std::string& name, const rt::Scene& s, unsigned threads) {
     const rt::Image plain = rt::render<Real>(s, 1, false);
@@ -116,30 +115,8 @@ bool renders_as_plain(const std::string& name, const rt::Scene& s, unsigned thre
     const rt::ImageDiff d = rt::compare_images(fast, plain);
     if (!d.same_size || d.differing_pixels != 0)
         std::cerr << name << " (" << sizeof(Real) << "-byte reals): " << d.differing_pixels
-                  << " pixels differ from the plain tracer\n";
+                  << " pixels differ from the reference\n";
     return d.same_size && d.differing_pixels == 0;
-}
-
-// Whitted<Real, BruteForce>, pixel by pixel, against the plain tracer.
-template <typename Real>
-bool reference_as_plain(const std::string& name, const rt::Scene& s) {
-    const rt::Image plain = rt::render<Real>(s, 1, false);
-    const rt::Whitted<Real, rt::BruteForce<Real>> reference(s);
-    auto scratch = reference.make_scratch();
-    long long differing = 0;
-    for (int r = 0; r < s.rows; ++r)
-        for (int c = 0; c < s.columns; ++c) {
-            std::uint8_t pixel[3];
-            reference.pixel(reference.column_x(c), reference.row_y(r), pixel, scratch);
-            const std::size_t at =
-                (static_cast<std::size_t>(r) * std::size_t(s.columns) + std::size_t(c)) * 3;
-            differing +=
-                pixel[0] != plain.rgb[at] || pixel[1] != plain.rgb[at + 1] || pixel[2] != plain.rgb[at + 2];
-        }
-    if (differing != 0)
-        std::cerr << name << " (" << sizeof(Real) << "-byte reals): the reference path differs in "
-                  << differing << " pixels\n";
-    return differing == 0;
 }
 
 // Every scene file of the repository and the course, at a small odd size.
@@ -172,18 +149,6 @@ TEST(bvh_of_coincident_ellipsoids) {
     rt::Scene scene = hard_crowd(7, 70);
     for (rt::SphereSpec& e : scene.spheres) e.centre = {0.5, -0.25, -6};
     CHECK_EQ(queries_differing<double>(scene, 7), 0);
-}
-
-TEST(reference_path_is_the_plain_tracer) {
-    for (const auto& [name, scene] : all_scene_files()) {
-        CHECK(reference_as_plain<float>(name, scene));
-        CHECK(reference_as_plain<double>(name, scene));
-        CHECK(reference_as_plain<long double>(name, scene));
-    }
-    for (unsigned seed = 1; seed <= 40; ++seed) {
-        const rt::Scene scene = stress::random_scene(seed);
-        CHECK(reference_as_plain<double>("random scene " + std::to_string(seed), scene));
-    }
 }
 
 TEST(scenes_render_through_the_tree_as_the_plain_tracer) {

@@ -1,7 +1,8 @@
-// The speed work (issue 5) must not move a single byte: every image rendered with the
-// shortcuts (culling, light buffers, shadow prefilter, threads) equals the image of the
-// plain tracer that tests every ray against every ellipsoid, in float, double and long
-// double, and is the same for any number of threads.
+// The flat sweep (tracer.h, render.cpp) must not move a single byte: every image
+// rendered with its shortcuts (culling, light buffers, shadow prefilter, packets,
+// threads) equals the image of the reference (whitted.h with brute_force.h: every ray
+// against every ellipsoid), in float, double and long double, and is the same for any
+// number of threads.
 // Scenes: the course scenes (when present), the heavy benchmark scene, and random
 // scenes built to stress the margins (thin, far, negative-scaled and overlapping
 // ellipsoids, lights inside them or on their surface, the eye inside one).
@@ -41,7 +42,7 @@ bool same_as_plain(const std::string& name, const rt::Scene& s) {
     const rt::ImageDiff d = rt::compare_images(fast, plain);
     if (d.differing_pixels != 0)
         std::cerr << name << " (" << sizeof(Real) << "-byte reals): " << d.differing_pixels
-                  << " pixels differ from the plain tracer\n";
+                  << " pixels differ from the reference\n";
     return d.same_size && d.differing_pixels == 0;
 }
 
