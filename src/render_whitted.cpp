@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <utility>
 #include <vector>
 
 #include "raytracer/brute_force.h"
@@ -14,13 +15,17 @@
 namespace rt {
 
 namespace {
-// Each pixel on its own through Whitted<Real, Geometry>, rows shared by the threads.
+// The threads a render uses: as asked (0: all cores), at most one per row.
+unsigned thread_count(const Scene& scene, unsigned threads) {
+    return std::min<unsigned>(threads == 0 ? default_thread_count() : threads,
+                              static_cast<unsigned>(scene.rows));
+}
+
+// Each pixel on its own through Whitted<Real, Geometry> on count threads, rows shared.
 template <typename Real, typename Geometry>
-void render_pixels_to(const Scene& scene, RowSink& sink, unsigned threads) {
-    const Whitted<Real, Geometry> tracer(scene);
+void render_pixels_to(const Scene& scene, Geometry geometry, RowSink& sink, unsigned count) {
+    const Whitted<Real, Geometry> tracer(scene, std::move(geometry));
     const std::size_t row_bytes = static_cast<std::size_t>(scene.columns) * 3;
-    const unsigned count = std::min<unsigned>(threads == 0 ? default_thread_count() : threads,
-                                              static_cast<unsigned>(scene.rows));
     // Bands of a few rows from a shared counter, so that a thread that draws cheap rows
     // takes more of them; the rows go to the sink from a ring as they are finished.
     constexpr int kBandRows = 4;
@@ -58,12 +63,14 @@ void render_pixels_to(const Scene& scene, RowSink& sink, unsigned threads) {
 
 template <typename Real>
 void render_whitted_to(const Scene& scene, RowSink& sink, unsigned threads) {
-    render_pixels_to<Real, Bvh<Real>>(scene, sink, threads);
+    const unsigned count = thread_count(scene, threads);
+    render_pixels_to<Real>(scene, Bvh<Real>(make_ellipsoids<Real>(scene), count), sink, count);
 }
 
 template <typename Real>
 void render_reference_to(const Scene& scene, RowSink& sink, unsigned threads) {
-    render_pixels_to<Real, BruteForce<Real>>(scene, sink, threads);
+    render_pixels_to<Real>(scene, BruteForce<Real>(make_ellipsoids<Real>(scene)), sink,
+                           thread_count(scene, threads));
 }
 
 // As in render.cpp: double for raytracer.exe, float and long double for the tests.

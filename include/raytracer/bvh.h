@@ -55,7 +55,8 @@ public:
 
     static constexpr double kInflation = 1e-3;  // as sphere_bounds.h
 
-    explicit Bvh(std::vector<Ellipsoid<Real>> ellipsoids);
+    // threads: how many may build the tree (1 or 2 are used).
+    explicit Bvh(std::vector<Ellipsoid<Real>> ellipsoids, unsigned threads = 1);
 
     // As BruteForce::closest(): the nearest visible root beyond min_t.
     NearestHit<Real> closest(const V& origin, const V& direction, double min_t) const {
@@ -229,7 +230,7 @@ void Bvh<Real, Width>::traverse(const C (&o)[3], const C (&inv)[3], C t0, C t1, 
 }
 
 template <typename Real, int Width>
-Bvh<Real, Width>::Bvh(std::vector<Ellipsoid<Real>> ellipsoids) {
+Bvh<Real, Width>::Bvh(std::vector<Ellipsoid<Real>> ellipsoids, unsigned threads) {
     // Rounding of intersect() in the unit space grows like epsilon(Real) times the
     // distance in units of the smallest scale: as sphere_bounds.h, at most 1e6 smallest
     // scales in double (1e2 in float). The Euclidean distance is at most sqrt(3) times
@@ -253,7 +254,7 @@ Bvh<Real, Width>::Bvh(std::vector<Ellipsoid<Real>> ellipsoids) {
         item.guard = guard <= std::numeric_limits<C>::max() ? guard : std::numeric_limits<C>::max();
         item.index = static_cast<std::uint32_t>(i);
     }
-    const std::vector<BuildNode<C>> binary = BinaryTreeBuilder<C>().build(items);
+    const std::vector<BuildNode<C>> binary = BinaryTreeBuilder<C>().build(items, threads);
     index_.reserve(items.size());
     position_.resize(items.size());
     for (const BuildItem<C>& item : items) {

@@ -3,6 +3,8 @@
 // spaces (SPEC section 4), so no 4x4 matrix is needed for an axis-aligned ellipsoid.
 #pragma once
 
+#include <vector>
+
 #include "raytracer/scene.h"
 #include "raytracer/unit_sphere_roots.h"
 #include "raytracer/vec3.h"
@@ -30,6 +32,15 @@ Ellipsoid<Real> make_ellipsoid(const SphereSpec& s) {
             static_cast<Real>(s.ks),
             static_cast<Real>(s.kr),
             static_cast<Real>(s.shininess)};
+}
+
+// The scene's ellipsoids, in its order.
+template <typename Real>
+std::vector<Ellipsoid<Real>> make_ellipsoids(const Scene& scene) {
+    std::vector<Ellipsoid<Real>> all;
+    all.reserve(scene.spheres.size());
+    for (const SphereSpec& s : scene.spheres) all.push_back(make_ellipsoid<Real>(s));
+    return all;
 }
 
 // Both ray parameters where the ray meets the surface, near <= far; hit is false when

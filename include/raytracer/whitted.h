@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "raytracer/ellipsoid.h"
@@ -22,8 +23,9 @@ class Whitted {
 public:
     using V = Vec3<Real>;
 
-    explicit Whitted(const Scene& scene)
-        : geometry_(make_ellipsoids(scene)),
+    // geometry: over make_ellipsoids<Real>(scene).
+    Whitted(const Scene& scene, Geometry geometry)
+        : geometry_(std::move(geometry)),
           ambient_(V::from(scene.ambient)),
           background_(V::from(scene.background)),
           left_(Real(scene.left)),
@@ -75,13 +77,6 @@ private:
         bool no_lighting;       // Kd = Ks = 0
         std::int32_t exponent;  // whole_exponent(n): -1 when pow() is needed
     };
-
-    static std::vector<Ellipsoid<Real>> make_ellipsoids(const Scene& scene) {
-        std::vector<Ellipsoid<Real>> all;
-        all.reserve(scene.spheres.size());
-        for (const SphereSpec& s : scene.spheres) all.push_back(make_ellipsoid<Real>(s));
-        return all;
-    }
 
     // The colour seen along origin + t direction beyond min_t; miss when nothing is hit
     // (BACK for eye rays, black for reflected rays).
