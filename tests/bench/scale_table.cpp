@@ -105,8 +105,8 @@ void scale_table(const fs::path& raytracer, const fs::path& make_scene, const fs
     std::printf("  prepare: median %.1f ms (min %.1f), peak %.1f MiB (target: 150 ms, 64 MB)\n",
                 prepare.median() * 1e3, prepare.min() * 1e3, prepare_peak / 1048576);
     const bench::Run wide = timed({raytracer.string(), "--threads", "64", scenes.back().name + ".txt"});
-    std::printf("  64 threads: %.1f ms, peak %.1f MB (target: 512 MB)\n", wide.seconds * 1e3,
-                wide.peak_bytes / 1e6);
+    std::printf("  64 threads: %.1f ms, peak %.1f MiB (target: 512 MB)\n", wide.seconds * 1e3,
+                wide.peak_bytes / 1048576);
     for (const ScaleScene& s : scenes) {
         std::error_code ignored;
         for (const char* end : {".txt", ".ppm", "-pov.ppm", "-small.txt", "-small.ppm"})
