@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "ambiguous_pixels.h"
+#include "pass_rule.h"
 
 namespace grade {
 namespace {
@@ -70,19 +71,15 @@ rt::Image difference_picture(const std::string& key_name, const rt::Image& key, 
             const std::size_t at = 3 * (static_cast<std::size_t>(y) * static_cast<std::size_t>(key.width) +
                                         static_cast<std::size_t>(x));
             int largest = 0;
-            for (std::size_t k = at; k < at + 3; ++k)
-                largest = std::max(largest, std::abs(key.rgb[k] - got.rgb[k]));
-            const bool is_ambiguous =
-                std::any_of(ambiguous.begin(), ambiguous.end(),
-                            [&](const AmbiguousPixel& p) { return p.x == x && p.y == y; });
-            if (largest == 0) {
+            const PixelVerdict verdict = pixel_verdict(key, got, x, y, ambiguous, largest);
+            if (verdict == PixelVerdict::kSame) {
                 const int grey =
                     (key.rgb[at] + key.rgb[at + 1] + key.rgb[at + 2]) / 12;  // a quarter of the mean
                 canvas.set(left + x, y, static_cast<std::uint8_t>(grey), static_cast<std::uint8_t>(grey),
                            static_cast<std::uint8_t>(grey));
-            } else if (largest <= 1) {
+            } else if (verdict == PixelVerdict::kTruncationStep) {
                 canvas.set(left + x, y, 0, 0, 160);
-            } else if (is_ambiguous) {
+            } else if (verdict == PixelVerdict::kAmbiguous) {
                 canvas.set(left + x, y, 255, 255, 0);
             } else {
                 canvas.set(left + x, y, static_cast<std::uint8_t>(std::min(255, 128 + 2 * largest)), 0, 0);

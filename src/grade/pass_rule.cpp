@@ -19,28 +19,40 @@ void Box::add(int x, int y) {
     bottom = std::max(bottom, y);
 }
 
+PixelVerdict pixel_verdict(const rt::Image& key, const rt::Image& got, int x, int y,
+                           const std::vector<AmbiguousPixel>& ambiguous, int& largest) {
+    const std::size_t at =
+        3 * (static_cast<std::size_t>(y) * static_cast<std::size_t>(key.width) + static_cast<std::size_t>(x));
+    largest = 0;
+    for (std::size_t k = at; k < at + 3; ++k) largest = std::max(largest, std::abs(key.rgb[k] - got.rgb[k]));
+    if (largest == 0) return PixelVerdict::kSame;
+    if (largest <= 1) return PixelVerdict::kTruncationStep;
+    const bool known = std::any_of(ambiguous.begin(), ambiguous.end(),
+                                   [&](const AmbiguousPixel& p) { return p.x == x && p.y == y; });
+    return known ? PixelVerdict::kAmbiguous : PixelVerdict::kUnexplained;
+}
+
 Judgement judge(const std::string& key_name, const rt::Image& key, const rt::Image& got) {
     Judgement j;
     const std::vector<AmbiguousPixel> ambiguous = ambiguous_pixels_of(key_name);
     for (int y = 0; y < key.height; ++y) {
         for (int x = 0; x < key.width; ++x) {
-            const std::size_t at = 3 * (static_cast<std::size_t>(y) * static_cast<std::size_t>(key.width) +
-                                        static_cast<std::size_t>(x));
             int largest = 0;
-            for (std::size_t k = at; k < at + 3; ++k)
-                largest = std::max(largest, std::abs(key.rgb[k] - got.rgb[k]));
-            if (largest == 0) continue;
+            const PixelVerdict verdict = pixel_verdict(key, got, x, y, ambiguous, largest);
+            if (verdict == PixelVerdict::kSame) continue;
             ++j.differing;
             j.largest_difference = std::max(j.largest_difference, largest);
-            if (largest <= 1) {
+            if (verdict == PixelVerdict::kTruncationStep) {
                 ++j.truncation_steps;
-            } else if (std::any_of(ambiguous.begin(), ambiguous.end(),
-                                   [&](const AmbiguousPixel& p) { return p.x == x && p.y == y; })) {
+            } else if (verdict == PixelVerdict::kAmbiguous) {
                 ++j.ambiguous;
             } else {
                 ++j.unexplained;
                 j.unexplained_box.add(x, y);
                 if (j.first_unexplained.size() < Judgement::kShown) {
+                    const std::size_t at =
+                        3 * (static_cast<std::size_t>(y) * static_cast<std::size_t>(key.width) +
+                             static_cast<std::size_t>(x));
                     PixelDifference d;
                     d.x = x;
                     d.y = y;

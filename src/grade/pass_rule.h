@@ -7,9 +7,18 @@
 #include <string>
 #include <vector>
 
+#include "ambiguous_pixels.h"
 #include "raytracer/image.h"
 
 namespace grade {
+
+// What the rule makes of one pixel.
+enum class PixelVerdict { kSame, kTruncationStep, kAmbiguous, kUnexplained };
+
+// The rule for pixel (x, y) of got against its key, given the key's ambiguous pixels;
+// largest: its largest channel difference, in levels.
+PixelVerdict pixel_verdict(const rt::Image& key, const rt::Image& got, int x, int y,
+                           const std::vector<AmbiguousPixel>& ambiguous, int& largest);
 
 struct PixelDifference {
     int x = 0, y = 0;  // column, row from the top
