@@ -33,7 +33,7 @@ long ellipsoids(const ScaleScene& s) {
 // of the spawn (the memory the child starts with, before exec).
 std::string write_scene(const fs::path& make_scene, const ScaleScene& s, int columns, int rows,
                         bool& failed) {
-    const std::string file = s.name + (columns == 400 && rows == 400 ? "" : "-small") + ".txt";
+    std::string file = s.name + (columns == 400 && rows == 400 ? "" : "-small") + ".txt";
     if (bench::run({make_scene.string(), s.kind, std::to_string(s.size), file, std::to_string(columns),
                     std::to_string(rows)}) < 0) {
         std::fprintf(stderr, "benchmark: make_scene could not write %s\n", file.c_str());
