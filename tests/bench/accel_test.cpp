@@ -7,9 +7,11 @@
 //   (render(..., accelerate = false)) does: the reference path is the specification;
 // - render() of scenes past kFlatSweepEllipsoids, which takes the tree, equals the plain
 //   tracer, in float, double and long double and for any number of threads.
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -186,5 +188,96 @@ TEST(large_scenes_render_as_the_plain_tracer) {
         CHECK(renders_as_plain<double>(name, scene, threads));
         CHECK(renders_as_plain<long double>(name, scene, threads));
         threads = threads % 7 + 1;
+    }
+}
+
+namespace {
+
+// A ray from a point on an ellipsoid's surface, rounded outward (c = |o'|^2 - 1 = 2 eps),
+// along the tangent plane to within rounding (b = o'.d' ~ -4 eps |d'|): intersect()
+// clamps its discriminant to zero (ellipsoid.h, tangency) and returns the roots q/a ~ 0
+// and c/q ~ 0.5 -- the second one half a ray length away, far outside the ellipsoid and
+// its box. The ray leaves the box before min_t, so a box test alone would cull it.
+template <typename Real>
+bool tangent_from_surface_as_brute_force() {
+    using V = rt::Vec3<Real>;
+    rt::SphereSpec unit;
+    unit.scale = {1, 1, 1};
+    rt::SphereSpec other = unit;
+    other.centre = {0, 0, -10};  // a second one, so that the tree has a node with boxes
+    const std::vector<rt::Ellipsoid<Real>> all = {rt::make_ellipsoid<Real>(unit),
+                                                  rt::make_ellipsoid<Real>(other)};
+    const rt::BruteForce<Real> plain(all);
+    const rt::Bvh<Real> tree(all);
+    const V point{std::nextafter(Real(1), Real(2)), 0, 0};
+    const Real off = -4 * std::numeric_limits<Real>::epsilon();
+    bool same = true;
+    // A shadow ray towards a light 2000 radii away, and a reflected ray 2e5 radii long:
+    // both leave the box before their min_t (0.001 and 0.0001).
+    for (const Real length : {Real(2000), Real(2e5)}) {
+        const V direction{off, length, 0};
+        std::uint32_t plain_hint = rt::kNoBlocker, tree_hint = rt::kNoBlocker;
+        const bool blocked = plain.occluded(point, direction, plain_hint);
+        if (tree.occluded(point, direction, tree_hint) != blocked) {
+            std::cerr << sizeof(Real) << "-byte reals, length " << length << ": occluded() is " << !blocked
+                      << ", BruteForce says " << blocked << "\n";
+            same = false;
+        }
+        const rt::NearestHit<Real> a = tree.closest(point, direction, rt::spec::kReflectedRayMinT);
+        const rt::NearestHit<Real> b = plain.closest(point, direction, rt::spec::kReflectedRayMinT);
+        if (!same_hit(a, b)) {
+            std::cerr << sizeof(Real) << "-byte reals, length " << length << ": closest() finds " << a.found()
+                      << " at t = " << a.t << ", BruteForce " << b.found() << " at t = " << b.t << "\n";
+            same = false;
+        }
+    }
+    return same;
+}
+
+// The camera on an ellipsoid's surface (o' = (-(1 + eps), 0, 0): c = 2 eps), and a
+// column of eye rays whose x is a rounding residue of 1.4e-17, tangent to it within the
+// allowance: intersect() reports a root at t ~ 10, on no surface; the plain tracer paints
+// the column with it. The ellipsoid lies wholly before the near plane, so the tree's
+// box test culls it.
+rt::Scene camera_on_a_surface() {
+    rt::Scene s;
+    s.near_plane = 1, s.left = -0.1, s.right = 0.2, s.bottom = -0.1, s.top = 0.1;
+    s.columns = 3, s.rows = 3;  // column 1: x = -0.1 + 0.30000000000000004 / 3 = 1.4e-17
+    s.background = {0, 0, 0}, s.ambient = {1, 1, 1};
+    rt::SphereSpec skin;
+    skin.name = "skin";
+    skin.centre = {0.3, 0, 0};
+    skin.scale = {0.29999999999999993, 0.25, 0.25};  // 0.3 less 2 ulps
+    skin.colour = {1, 1, 1}, skin.ka = 1;
+    s.spheres.push_back(skin);
+    while (s.spheres.size() <= rt::kFlatSweepEllipsoids) {  // behind the camera: the tree's path
+        rt::SphereSpec far = skin;
+        const auto k = static_cast<double>(s.spheres.size());
+        far.name = "far";
+        far.centre = {std::fmod(k, 10) - 5, std::floor(k / 10) - 3, 40};
+        far.scale = {0.1, 0.1, 0.1};
+        s.spheres.push_back(far);
+    }
+    rt::LightSpec light;
+    light.name = "light";
+    light.intensity = {1, 1, 1};
+    s.lights.push_back(light);
+    return s;
+}
+
+}  // namespace
+
+TEST(bvh_tangent_ray_from_a_surface_point) {
+    CHECK(tangent_from_surface_as_brute_force<float>());
+    CHECK(tangent_from_surface_as_brute_force<double>());
+    CHECK(tangent_from_surface_as_brute_force<long double>());
+}
+
+TEST(camera_on_a_surface_renders_as_the_plain_tracer) {
+    const rt::Scene scene = camera_on_a_surface();
+    for (unsigned threads : {1U, 3U}) {
+        CHECK(renders_as_plain<float>("camera on a surface", scene, threads));
+        CHECK(renders_as_plain<double>("camera on a surface", scene, threads));
+        CHECK(renders_as_plain<long double>("camera on a surface", scene, threads));
     }
 }
