@@ -192,7 +192,17 @@ template <typename Leaf>
 void Bvh<Real, Width>::traverse(const V& origin, const V& direction, C t0, C t1, Leaf leaf) const {
     if (items_.empty()) return;
     const C o[3] = {C(origin.x), C(origin.y), C(origin.z)};
-    const C inv[3] = {1 / C(direction.x), 1 / C(direction.y), 1 / C(direction.z)};
+    const C d[3] = {C(direction.x), C(direction.y), C(direction.z)};
+    const C inv[3] = {1 / d[0], 1 / d[1], 1 / d[2]};
+    // A component below 1 / max (a scene of subnormal numbers) has an infinite inverse,
+    // which makes a slab's t = (lo - o) * inv infinite where it is finite, and culls boxes
+    // the ray enters: such a ray is tried against every ellipsoid, as by the definition.
+    for (int a = 0; a < 3; ++a)
+        if (d[a] != 0 && !(std::abs(inv[a]) <= std::numeric_limits<C>::max())) {
+            C all_t1 = t1;
+            leaf(Child{0, static_cast<std::uint32_t>(items_.size())}, all_t1);
+            return;
+        }
     // Nearly every ray starts within every guard distance (the scene is far smaller than
     // 1e6 of its smallest scale): then no node needs its guards checked.
     C farthest = 0;
@@ -249,8 +259,11 @@ Bvh<Real, Width>::Bvh(std::vector<Ellipsoid<Real>> ellipsoids) {
         BuildItem<C>& item = items[i];
         for (int a = 0; a < 3; ++a) {
             // Grown by 4 ulps of the centre too, so that the box's own rounding stays
-            // inside the gap even for a small ellipsoid far from the origin.
-            const C half = s[a] * (1 + C(kInflation)) + abs(c[a]) * 4 * std::numeric_limits<C>::epsilon();
+            // inside the gap even for a small ellipsoid far from the origin; and by the
+            // smallest subnormal, as a scale below 500 of them is its own product with
+            // 1 + kInflation: a gap of one ulp is still > kInflation of it.
+            const C half = s[a] * (1 + C(kInflation)) + abs(c[a]) * 4 * std::numeric_limits<C>::epsilon() +
+                           std::numeric_limits<C>::denorm_min();
             item.box.lo[a] = c[a] - half, item.box.hi[a] = c[a] + half;
             item.centre[a] = c[a];
         }

@@ -281,3 +281,62 @@ TEST(camera_on_a_surface_renders_as_the_plain_tracer) {
         CHECK(renders_as_plain<long double>("camera on a surface", scene, threads));
     }
 }
+
+namespace {
+
+// n copies of a sphere of scale s in a row along -z, 4 s apart: more than a leaf holds,
+// so that the tree has nodes (at subnormal sizes every box's area is 0, and the builder
+// splits at the median).
+std::vector<rt::Ellipsoid<double>> row_of_spheres(double s, int n) {
+    std::vector<rt::Ellipsoid<double>> all;
+    for (int i = 0; i < n; ++i) {
+        rt::SphereSpec e;
+        e.scale = {s, s, s}, e.centre = {0, 0, -4 * s * i};
+        all.push_back(rt::make_ellipsoid<double>(e));
+    }
+    return all;
+}
+
+}  // namespace
+
+// A scene of subnormal numbers (the parser takes them: 4e-320 is a scale like any
+// other): the eye rays' components are ~1e-318, whose inverses overflow to inf, so the
+// slab test finds every box entered at t = inf.
+TEST(bvh_rays_of_subnormal_length) {
+    const double k = 1e-318;
+    std::vector<rt::Ellipsoid<double>> all;
+    for (int i = 0; i < 70; ++i) {
+        rt::SphereSpec e;
+        e.centre = {k * ((i % 7) - 3) * 0.5, k * ((i / 7 % 5) - 2) * 0.5, -k * (3 + i / 35)};
+        e.scale = {k * 0.3, k * 0.3, k * 0.3};
+        all.push_back(rt::make_ellipsoid<double>(e));
+    }
+    const rt::BruteForce<double> plain(all);
+    const rt::Bvh<double> tree(all);
+    int hits = 0, differing = 0;
+    for (int c = 0; c < 9; ++c)
+        for (int r = 0; r < 9; ++r) {
+            const rt::Vec3<double> d{-k + 2 * k * c / 9, k - 2 * k * r / 9, -k};  // as column_x(), row_y()
+            const rt::NearestHit<double> a = plain.closest({}, d, rt::spec::kEyeRayMinT);
+            hits += a.found();
+            differing += !same_hit(tree.closest({}, d, rt::spec::kEyeRayMinT), a);
+            std::uint32_t plain_hint = rt::kNoBlocker, tree_hint = rt::kNoBlocker;
+            differing += tree.occluded({}, d, tree_hint) != plain.occluded({}, d, plain_hint);
+        }
+    CHECK(hits > 0);  // the scene is seen at all
+    CHECK_EQ(differing, 0);
+}
+
+// A scale of 1e-321 is 202 subnormal ulps: s * (1 + 1e-3) rounds back to s, so the box
+// has no gap, and a ray in the plane of its face (y = s, direction y = 0: 0 * inf is NaN
+// there) that touches the sphere is culled.
+TEST(bvh_subnormal_scale_keeps_a_gap) {
+    const std::vector<rt::Ellipsoid<double>> all = row_of_spheres(1e-321, 70);
+    const rt::BruteForce<double> plain(all);
+    const rt::Bvh<double> tree(all);
+    const double s = all[0].scale.x;
+    const rt::Vec3<double> origin{-10 * s, s, 0}, direction{1e-300, 0, 0};  // 1/d finite
+    const rt::NearestHit<double> a = plain.closest(origin, direction, 1e-30);
+    CHECK(a.found());  // tangent at (0, s, 0)
+    CHECK(same_hit(tree.closest(origin, direction, 1e-30), a));
+}
