@@ -301,22 +301,39 @@ std::vector<rt::Ellipsoid<double>> row_of_spheres(double s, int n) {
 
 // A scene of subnormal numbers (the parser takes them: 4e-320 is a scale like any
 // other): the eye rays' components are ~1e-318, whose inverses overflow to inf, so the
-// slab test finds every box entered at t = inf.
-TEST(bvh_rays_of_subnormal_length) {
+// slab test finds every box entered at t = inf; two pixels saw a farther sphere.
+rt::Scene subnormal_scene() {
     const double k = 1e-318;
-    std::vector<rt::Ellipsoid<double>> all;
+    rt::Scene s;
+    s.near_plane = k, s.left = -k, s.right = k, s.bottom = -k, s.top = k;
+    s.columns = 9, s.rows = 9;
+    s.background = {0, 0, 0}, s.ambient = {1, 1, 1};
     for (int i = 0; i < 70; ++i) {
         rt::SphereSpec e;
+        e.name = "e" + std::to_string(i);
         e.centre = {k * ((i % 7) - 3) * 0.5, k * ((i / 7 % 5) - 2) * 0.5, -k * (3 + i / 35)};
         e.scale = {k * 0.3, k * 0.3, k * 0.3};
-        all.push_back(rt::make_ellipsoid<double>(e));
+        e.colour = {i / 70.0, 1, 1}, e.ka = 1;  // a different red for each
+        s.spheres.push_back(e);
     }
+    rt::LightSpec light;
+    light.name = "light";
+    light.intensity = {1, 1, 1};
+    s.lights.push_back(light);
+    return s;
+}
+
+TEST(bvh_rays_of_subnormal_length) {
+    const rt::Scene scene = subnormal_scene();
+    std::vector<rt::Ellipsoid<double>> all;
+    for (const rt::SphereSpec& e : scene.spheres) all.push_back(rt::make_ellipsoid<double>(e));
     const rt::BruteForce<double> plain(all);
     const rt::Bvh<double> tree(all);
+    const rt::Whitted<double, rt::BruteForce<double>> camera(scene);  // for column_x(), row_y()
     int hits = 0, differing = 0;
-    for (int c = 0; c < 9; ++c)
-        for (int r = 0; r < 9; ++r) {
-            const rt::Vec3<double> d{-k + 2 * k * c / 9, k - 2 * k * r / 9, -k};  // as column_x(), row_y()
+    for (int c = 0; c < scene.columns; ++c)
+        for (int r = 0; r < scene.rows; ++r) {
+            const rt::Vec3<double> d{camera.column_x(c), camera.row_y(r), -scene.near_plane};
             const rt::NearestHit<double> a = plain.closest({}, d, rt::spec::kEyeRayMinT);
             hits += a.found();
             differing += !same_hit(tree.closest({}, d, rt::spec::kEyeRayMinT), a);
@@ -325,6 +342,11 @@ TEST(bvh_rays_of_subnormal_length) {
         }
     CHECK(hits > 0);  // the scene is seen at all
     CHECK_EQ(differing, 0);
+    for (unsigned threads : {1U, 2U}) {
+        CHECK(renders_as_plain<float>("subnormal scene", scene, threads));
+        CHECK(renders_as_plain<double>("subnormal scene", scene, threads));
+        CHECK(renders_as_plain<long double>("subnormal scene", scene, threads));
+    }
 }
 
 // A scale of 1e-321 is 202 subnormal ulps: s * (1 + 1e-3) rounds back to s, so the box
