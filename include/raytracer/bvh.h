@@ -158,7 +158,7 @@ private:
                 const C first = p < q ? p : q, last = (p < q ? q : p) * kWiden;
                 enter[k] = first > enter[k] ? first : enter[k];
                 leave[k] = last < leave[k] ? last : leave[k];
-                outside[k] = (from_lo > 0) | (from_hi < 0) ? C(1) : outside[k];
+                outside[k] = ((from_lo > 0) | (from_hi < 0)) ? C(1) : outside[k];
                 if (kGuarded) continue;
                 const C reach = std::max(std::abs(from_lo), std::abs(from_hi));
                 farthest[k] = reach > farthest[k] ? reach : farthest[k];
