@@ -85,8 +85,7 @@ std::chrono::microseconds worth_helping() {
 template <typename Real>
 void render_to(const Scene& scene, RowSink& sink, unsigned threads, bool accelerate) {
     if (!accelerate) return render_reference_to<Real>(scene, sink, threads);
-    if (takes_the_tree(scene.spheres.size(), scene.lights.size()))
-        return render_whitted_to<Real>(scene, sink, threads);
+    if (takes_the_tree(scene)) return render_whitted_to<Real>(scene, sink, threads);
     const Tracer<Real> tracer(scene);
 
     const Real left = static_cast<Real>(scene.left), right = static_cast<Real>(scene.right);

@@ -19,9 +19,17 @@
 // at all. Both hold only while the ray's origin is within kReach of the ellipsoid's
 // smallest scale (|o'| <= 1e6 in double: rounding ~1e-10 against the gap of 1e-3), as
 // in sphere_bounds.h: a child is culled only for a ray from within the guard distance
-// of every ellipsoid under it, else visited unculled. The ellipsoids of a leaf are
-// always tried with the exact intersect(). Ties between equal roots go to the lower
-// index (NearestHit::replaced_by()), as in the loop over all.
+// of every ellipsoid under it, else visited unculled. A child whose box holds the
+// ray's origin is never culled either: from a point on the surface (|o'| = 1 within
+// rounding) along its tangent plane, o'.d' is a rounding residue, and where intersect()
+// clamps the discriminant to zero (the tangency allowance) its second root c/q is
+// c / |o'.d'|, anywhere along the ray, far outside the box (a shadow ray towards a
+// light 2000 radii away leaves the box before t = 0.001 and is still "blocked" at
+// t ~ 0.5). From outside the box, |o'.d'| / |d'| >= sqrt(1.001^2 - 1) ~ 0.045 bounds
+// that root's distance from the tangent point to ~90 eps (1 + |o'|), deep inside the
+// gap. The ellipsoids of a leaf are always tried with the exact intersect(). Ties
+// between equal roots go to the lower index (NearestHit::replaced_by()), as in the loop
+// over all.
 //
 // Memory: the tree and a copy of the ellipsoids in leaf order; a query uses a fixed
 // stack, the same for any scene.
@@ -131,15 +139,16 @@ private:
 
     // Which children of node the ray may meet within [t0, t1] (bit k for child k), and
     // where it enters each. A slab is computed with at most 3 roundings, so the far end
-    // is widened by 2 gamma(3) (pbrt-v4, section 6.8.2).
+    // is widened by 2 gamma(3) (pbrt-v4, section 6.8.2). A box that holds the origin is
+    // always met, from t0 (the tangent roots above).
     // kGuarded: the ray's origin is known to be within every guard distance.
     template <bool kGuarded>
     static unsigned meets(const Node& node, const C (&o)[3], const C (&inv)[3], C t0, C t1,
                           C (&near)[Width]) {
         constexpr C kEps = std::numeric_limits<C>::epsilon() / 2;
         constexpr C kWiden = 1 + 2 * (3 * kEps / (1 - 3 * kEps));
-        C enter[Width], leave[Width], farthest[Width];
-        for (int k = 0; k < Width; ++k) enter[k] = t0, leave[k] = t1, farthest[k] = 0;
+        C enter[Width], leave[Width], farthest[Width], outside[Width];
+        for (int k = 0; k < Width; ++k) enter[k] = t0, leave[k] = t1, farthest[k] = 0, outside[k] = 0;
         for (int a = 0; a < 3; ++a) {
             const C* lo = node.lo[a];
             const C* hi = node.hi[a];
@@ -151,6 +160,7 @@ private:
                 const C first = p < q ? p : q, last = (p < q ? q : p) * kWiden;
                 enter[k] = first > enter[k] ? first : enter[k];
                 leave[k] = last < leave[k] ? last : leave[k];
+                outside[k] = ((from_lo > 0) | (from_hi < 0)) ? C(1) : outside[k];
                 if (kGuarded) continue;
                 const C reach = std::max(std::abs(from_lo), std::abs(from_hi));
                 farthest[k] = reach > farthest[k] ? reach : farthest[k];
@@ -159,9 +169,9 @@ private:
         bool hit[Width];
         RT_VECTOR_LOOP
         for (int k = 0; k < Width; ++k) {
-            const bool guarded = kGuarded || farthest[k] <= node.guard[k];
-            hit[k] = !guarded || enter[k] <= leave[k];
-            near[k] = guarded ? enter[k] : t0;
+            const bool cullable = (kGuarded || farthest[k] <= node.guard[k]) && outside[k] != 0;
+            hit[k] = !cullable || enter[k] <= leave[k];
+            near[k] = cullable ? enter[k] : t0;
         }
         unsigned mask = 0;
         for (int k = 0; k < Width; ++k) mask |= hit[k] && k < node.used ? 1U << k : 0U;
@@ -184,7 +194,17 @@ template <bool kNearestFirst, typename Leaf>
 void Bvh<Real, Width>::traverse(const V& origin, const V& direction, C t0, C t1, Leaf leaf) const {
     if (items_.empty()) return;
     const C o[3] = {C(origin.x), C(origin.y), C(origin.z)};
-    const C inv[3] = {1 / C(direction.x), 1 / C(direction.y), 1 / C(direction.z)};
+    const C d[3] = {C(direction.x), C(direction.y), C(direction.z)};
+    const C inv[3] = {1 / d[0], 1 / d[1], 1 / d[2]};
+    // A component below 1 / max (a scene of subnormal numbers) has an infinite inverse,
+    // which makes a slab's t = (lo - o) * inv infinite where it is finite, and culls boxes
+    // the ray enters: such a ray is tried against every ellipsoid, as by the definition.
+    for (int a = 0; a < 3; ++a)
+        if (d[a] != 0 && !(std::abs(inv[a]) <= std::numeric_limits<C>::max())) {
+            C all_t1 = t1;
+            leaf(Child{0, static_cast<std::uint32_t>(items_.size())}, all_t1);
+            return;
+        }
     // Nearly every ray starts within every guard distance (the scene is far smaller than
     // 1e6 of its smallest scale): then no node needs its guards checked.
     C farthest = 0;
@@ -245,8 +265,11 @@ Bvh<Real, Width>::Bvh(std::vector<Ellipsoid<Real>> ellipsoids, unsigned threads)
         BuildItem<C>& item = items[i];
         for (int a = 0; a < 3; ++a) {
             // Grown by 4 ulps of the centre too, so that the box's own rounding stays
-            // inside the gap even for a small ellipsoid far from the origin.
-            const C half = s[a] * (1 + C(kInflation)) + abs(c[a]) * 4 * std::numeric_limits<C>::epsilon();
+            // inside the gap even for a small ellipsoid far from the origin; and by the
+            // smallest subnormal, as a scale below 500 of them is its own product with
+            // 1 + kInflation: a gap of one ulp is still > kInflation of it.
+            const C half = s[a] * (1 + C(kInflation)) + abs(c[a]) * 4 * std::numeric_limits<C>::epsilon() +
+                           std::numeric_limits<C>::denorm_min();
             item.box.lo[a] = c[a] - half, item.box.hi[a] = c[a] + half;
             item.centre[a] = c[a];
         }
