@@ -342,7 +342,8 @@ rt::Scene subnormal_scene() {
     for (int i = 0; i < 70; ++i) {
         rt::SphereSpec e;
         e.name = "e" + std::to_string(i);
-        e.centre = {k * ((i % 7) - 3) * 0.5, k * ((i / 7 % 5) - 2) * 0.5, -k * (3 + i / 35)};
+        const int row = i / 7 % 5, depth = i / 35;  // whole numbers: 7 columns, 5 rows, 2 layers
+        e.centre = {k * ((i % 7) - 3) * 0.5, k * (row - 2) * 0.5, -k * (3 + depth)};
         e.scale = {k * 0.3, k * 0.3, k * 0.3};
         e.colour = {i / 70.0, 1, 1}, e.ka = 1;  // a different red for each
         s.spheres.push_back(e);
