@@ -11,6 +11,7 @@
 #ifdef _WIN32
 #include <process.h>
 #else
+#include <fcntl.h>
 #include <spawn.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -43,7 +44,7 @@ inline Run run_measured(const std::vector<std::string>& argv) {
     pid_t pid = 0;
     posix_spawn_file_actions_t quiet;
     posix_spawn_file_actions_init(&quiet);
-    posix_spawn_file_actions_addopen(&quiet, 1, "/dev/null", 0, 0);
+    posix_spawn_file_actions_addopen(&quiet, 1, "/dev/null", O_WRONLY, 0);
     bool ok = posix_spawn(&pid, args[0], &quiet, nullptr, args.data(), environ) == 0;
     posix_spawn_file_actions_destroy(&quiet);
     int status = 0;

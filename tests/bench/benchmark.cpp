@@ -11,7 +11,7 @@
 // machine falls on all of them alike. It never fails on timing: it reports.
 //
 // usage: benchmark --raytracer EXE --baseline EXE --floor EXE --course DIR --heavy FILE
-//                  [--make-scene EXE] [--povray RENDER_SH] [--quick] [--runs N]
+//                  [--make-scene EXE] [--povray RENDER_SH] [--quick] [--runs N] [--scale-only]
 //   (d), (e): scale_table.h.
 #include <algorithm>
 #include <cstdio>
@@ -79,60 +79,36 @@ Variant make_variant(const fs::path& dir, const fs::path& scene, int columns, in
 int usage() {
     std::fprintf(stderr,
                  "usage: benchmark --raytracer EXE --baseline EXE --floor EXE --course DIR --heavy FILE "
-                 "[--make-scene EXE] [--povray RENDER_SH] [--quick] [--runs N]\n");
+                 "[--make-scene EXE] [--povray RENDER_SH] [--quick] [--runs N] [--scale-only]\n");
     return 2;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-    std::map<std::string, std::string> opt;
-    bool quick = false;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        if (a == "--quick") {
-            quick = true;
-        } else if (a.rfind("--", 0) == 0 && i + 1 < argc) {
-            opt[a.substr(2)] = argv[++i];
-        } else {
-            return usage();
-        }
-    }
-    for (const char* required : {"raytracer", "baseline", "floor", "course", "heavy"})
-        if (opt.count(required) == 0) return usage();
-    const fs::path raytracer = fs::absolute(opt["raytracer"]), baseline = fs::absolute(opt["baseline"]);
-    const fs::path floor_exe = fs::absolute(opt["floor"]);
-    const int runs = opt.count("runs") ? std::max(1, std::atoi(opt["runs"].c_str())) : (quick ? 3 : 11);
-
+// What every table needs: the programs, the scenes, the scratch folder, how many runs.
+struct Bench {
+    fs::path raytracer, baseline, floor_exe, heavy, dir;
     std::vector<fs::path> course;
-    const fs::path scenes_dir = fs::absolute(fs::path(opt["course"]) / "scenes");
-    if (fs::is_directory(scenes_dir))
-        for (const auto& entry : fs::directory_iterator(scenes_dir))
-            if (entry.path().extension() == ".txt") course.push_back(entry.path());
-    std::sort(course.begin(), course.end());
-    const fs::path heavy = fs::absolute(opt["heavy"]);
-    const fs::path povray = opt.count("povray") ? fs::absolute(opt["povray"]) : fs::path();
-
-    const fs::path dir = fs::temp_directory_path() /
-                         ("raytracer-bench-" + std::to_string(Clock::now().time_since_epoch().count()));
-    fs::create_directories(dir);
-    // Scenes name their images relative to the working directory (OUTPUT may not leave
-    // it): every program runs in the scratch folder.
-    const fs::path previous = fs::current_path();
-    fs::current_path(dir);
+    int runs = 11;
+    bool quick = false;
     bool failed = false;
-    auto time_it = [&](const std::vector<std::string>& argv_) {
-        const double t = run(argv_);
+    // The wall time of a whole run of argv, in seconds; 0 and failed on failure.
+    double time_it(const std::vector<std::string>& argv) {
+        const double t = run(argv);
         if (t < 0) {
-            std::fprintf(stderr, "benchmark: '%s %s' failed\n", argv_[0].c_str(), argv_.back().c_str());
+            std::fprintf(stderr, "benchmark: '%s %s' failed\n", argv[0].c_str(), argv.back().c_str());
             failed = true;
         }
         return t < 0 ? 0.0 : t;
-    };
+    }
+};
 
-    std::printf("raytracer benchmark%s: %d runs, wall times in ms (min median max)\n",
-                quick ? " (quick)" : "", runs);
-
+// (a) The course scenes at 400x400 against the floor.
+void course_table(Bench& bench) {
+    const fs::path& raytracer = bench.raytracer;
+    const fs::path& dir = bench.dir;
+    const std::vector<fs::path>& course = bench.course;
+    const int runs = bench.runs;
+    auto time_it = [&bench](const std::vector<std::string>& argv) { return bench.time_it(argv); };
+    const fs::path& floor_exe = bench.floor_exe;
     // (a) Course scenes at 400x400 against the floor.
     std::printf("\n(a) course scenes at 400x400, whole process, against floor (target: ratio <= 1.5)\n");
     std::vector<Variant> small;
@@ -154,7 +130,17 @@ int main(int argc, char** argv) {
         print_row(small[i].name, small_stats[i], format("ratio %.2f", ratio));
     }
     if (!small.empty()) std::printf("  worst ratio %.2f: %s\n", worst, worst <= 1.5 ? "met" : "NOT met");
+}
 
+// (b) The heavy scene at 400x400 against the baseline.
+void heavy_table(Bench& bench) {
+    const fs::path& raytracer = bench.raytracer;
+    const fs::path& dir = bench.dir;
+    const int runs = bench.runs;
+    const bool quick = bench.quick;
+    auto time_it = [&bench](const std::vector<std::string>& argv) { return bench.time_it(argv); };
+    const fs::path& heavy = bench.heavy;
+    const fs::path& baseline = bench.baseline;
     // (b) The heavy scene at 400x400 against the baseline.
     std::printf("\n(b) heavy scene at 400x400 against baseline_tracer (target: ratio >= 20)\n");
     const Variant h = make_variant(dir, heavy, 400, 400);
@@ -179,7 +165,17 @@ int main(int argc, char** argv) {
     } else {
         std::printf("  images: cannot compare: %s\n", error.c_str());
     }
+}
 
+// (c) Large renders.
+void large_table(Bench& bench) {
+    const fs::path& raytracer = bench.raytracer;
+    const fs::path& dir = bench.dir;
+    const std::vector<fs::path>& course = bench.course;
+    const bool quick = bench.quick;
+    auto time_it = [&bench](const std::vector<std::string>& argv) { return bench.time_it(argv); };
+    const fs::path& heavy = bench.heavy;
+    const fs::path& baseline = bench.baseline;
     // (c) Large renders.
     std::printf(
         "\n(c) large renders: Mrays/s (eye rays per second, wall) and ratio to the baseline's rate\n");
@@ -212,15 +208,61 @@ int main(int argc, char** argv) {
         std::error_code ignored;
         fs::remove(vb.image, ignored);
     }
+}
 
-    // (d), (e) Scenes far beyond the course's size, against POV-Ray.
-    if (opt.count("make-scene"))
-        scale_table(raytracer, fs::absolute(opt["make-scene"]), povray, quick, failed);
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::map<std::string, std::string> opt;
+    Bench b;
+    bool scale_only = false;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        if (a == "--quick") {
+            b.quick = true;
+        } else if (a == "--scale-only") {
+            scale_only = true;
+        } else if (a.rfind("--", 0) == 0 && i + 1 < argc) {
+            opt[a.substr(2)] = argv[++i];
+        } else {
+            return usage();
+        }
+    }
+    for (const char* required : {"raytracer", "baseline", "floor", "course", "heavy"})
+        if (opt.count(required) == 0) return usage();
+    b.raytracer = fs::absolute(opt["raytracer"]), b.baseline = fs::absolute(opt["baseline"]);
+    b.floor_exe = fs::absolute(opt["floor"]), b.heavy = fs::absolute(opt["heavy"]);
+    b.runs = opt.count("runs") ? std::max(1, std::atoi(opt["runs"].c_str())) : (b.quick ? 3 : 11);
+    const fs::path scenes_dir = fs::absolute(fs::path(opt["course"]) / "scenes");
+    if (fs::is_directory(scenes_dir))
+        for (const auto& entry : fs::directory_iterator(scenes_dir))
+            if (entry.path().extension() == ".txt") b.course.push_back(entry.path());
+    std::sort(b.course.begin(), b.course.end());
+    const fs::path povray = opt.count("povray") ? fs::absolute(opt["povray"]) : fs::path();
+    const fs::path make_scene = opt.count("make-scene") ? fs::absolute(opt["make-scene"]) : fs::path();
+
+    b.dir = fs::temp_directory_path() /
+            ("raytracer-bench-" + std::to_string(Clock::now().time_since_epoch().count()));
+    fs::create_directories(b.dir);
+    // Scenes name their images relative to the working directory (OUTPUT may not leave
+    // it): every program runs in the scratch folder.
+    const fs::path previous = fs::current_path();
+    fs::current_path(b.dir);
+
+    std::printf("raytracer benchmark%s: %d runs, wall times in ms (min median max)\n",
+                b.quick ? " (quick)" : "", b.runs);
+    if (!scale_only) {
+        course_table(b);
+        heavy_table(b);
+        large_table(b);
+    }
+    if (!make_scene.empty())
+        scale_table(b.raytracer, make_scene, povray, b.quick, b.failed);
     else
         std::printf("\n(d), (e): not run (no --make-scene)\n");
 
     std::error_code ignored;
     fs::current_path(previous, ignored);
-    fs::remove_all(dir, ignored);
-    return failed ? 1 : 0;
+    fs::remove_all(b.dir, ignored);
+    return b.failed ? 1 : 0;
 }
