@@ -13,7 +13,8 @@ unsigned default_thread_count();
 
 // Instantiated for float, double and long double (src/render.cpp). threads = 0 means
 // default_thread_count(); the image is byte-identical for any number of threads.
-// accelerate = false renders without any shortcut (see Tracer), for tests.
+// accelerate = false renders through the reference path (whitted.h with brute_force.h:
+// every ray against every ellipsoid), which the tests hold the fast paths to.
 template <typename Real>
 Image render(const Scene& scene, unsigned threads = 0, bool accelerate = true);
 
