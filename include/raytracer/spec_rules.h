@@ -57,6 +57,14 @@ bool blocks_segment(const Ellipsoid<Real>& e, const Vec3<Real>& point, const Vec
     return r.hit && ((r.near > min_t && r.near < max_t) || (r.far > min_t && r.far < max_t));
 }
 
+// Whether the specular term Ks Ip (R.V)^n of an ellipsoid is exactly zero for every
+// light: Ks = 0, with pow finite (R.V <= 1 + a few ulps and 0 <= n <= 1e6). Shading
+// then skips it; adding it would change at most the sign of a zero channel.
+template <typename Real>
+bool specular_is_zero(const Ellipsoid<Real>& e) {
+    return e.ks == 0 && e.shininess >= 0 && e.shininess <= Real(1e6);
+}
+
 // A geometry's hint for its any-hit query, per light and thread: which ellipsoid to try
 // first (the one that blocked this light last); kNoBlocker before any.
 inline constexpr std::uint32_t kNoBlocker = 0xFFFFFFFFU;

@@ -43,13 +43,11 @@ public:
 
     SphereBounds() = default;
 
-    // With cull = false nothing is ever culled.
-    SphereBounds(const std::vector<Ellipsoid<Real>>& ellipsoids, const std::vector<Vec3<Real>>& lights,
-                 bool cull = true) {
+    SphereBounds(const std::vector<Ellipsoid<Real>>& ellipsoids, const std::vector<Vec3<Real>>& lights) {
         // Rounding of intersect() in the unit space grows like epsilon(Real) times the
         // distance in units of the smallest scale; allow distances up to 1e6 (double) or
         // 1e2 (float) smallest scales, i.e. at most ~1e-10 (1e-5) against a gap of 1e-3.
-        const C reach = !cull ? C(0) : std::numeric_limits<Real>::digits > 30 ? C(1e6) : C(1e2);
+        const C reach = std::numeric_limits<Real>::digits > 30 ? C(1e6) : C(1e2);
         const std::size_t n = ellipsoids.size();
         cx_.resize(n), cy_.resize(n), cz_.resize(n), radius_.resize(n), radius2_.resize(n), guard2_.resize(n);
         for (std::size_t i = 0; i < n; ++i) {

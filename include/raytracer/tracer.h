@@ -70,7 +70,7 @@ public:
         // Per ellipsoid, the ambient term Ka*Ia*O (the same operations as per hit) and which
         // terms are exactly zero (see shade()).
         for (const Ellipsoid<Real>& e : ellipsoids_) {
-            const bool no_specular = e.ks == 0 && e.shininess >= 0 && e.shininess <= Real(1e6);
+            const bool no_specular = specular_is_zero(e);
             Surface surface{(ambient_ * e.ka) * e.colour, no_specular, no_specular && e.kd == 0, false, {},
                             whole_exponent(e.shininess)};
             surface.flat = surface.no_lighting && !(e.kr > 0);

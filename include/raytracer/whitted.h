@@ -39,9 +39,7 @@ public:
             lights_.push_back({V::from(l.position), V::from(l.intensity)});
         for (std::uint32_t i = 0; i < scene.spheres.size(); ++i) {
             const Ellipsoid<Real>& e = geometry_.ellipsoid(i);
-            // Ks = 0 makes the specular term exactly zero (pow is finite for R.V <= 1 + a
-            // few ulps and 0 <= n <= 1e6); with Kd = 0 too no light adds anything.
-            const bool no_specular = e.ks == 0 && e.shininess >= 0 && e.shininess <= Real(1e6);
+            const bool no_specular = specular_is_zero(e);  // with Kd = 0 too, no light adds anything
             materials_.push_back({(ambient_ * e.ka) * e.colour, no_specular, no_specular && e.kd == 0,
                                   whole_exponent(e.shininess)});
         }
@@ -64,8 +62,6 @@ public:
         const V colour = trace({}, {x, y, near_z_}, kEyeRayMinT, kMaxReflections, background_, scratch);
         out[0] = to_byte(colour.x), out[1] = to_byte(colour.y), out[2] = to_byte(colour.z);
     }
-
-    const Geometry& geometry() const { return geometry_; }
 
 private:
     struct Light {

@@ -109,7 +109,6 @@ void course_table(Bench& bench) {
     const int runs = bench.runs;
     auto time_it = [&bench](const std::vector<std::string>& argv) { return bench.time_it(argv); };
     const fs::path& floor_exe = bench.floor_exe;
-    // (a) Course scenes at 400x400 against the floor.
     std::printf("\n(a) course scenes at 400x400, whole process, against floor (target: ratio <= 1.5)\n");
     std::vector<Variant> small;
     small.reserve(course.size());
@@ -141,7 +140,6 @@ void heavy_table(Bench& bench) {
     auto time_it = [&bench](const std::vector<std::string>& argv) { return bench.time_it(argv); };
     const fs::path& heavy = bench.heavy;
     const fs::path& baseline = bench.baseline;
-    // (b) The heavy scene at 400x400 against the baseline.
     std::printf("\n(b) heavy scene at 400x400 against baseline_tracer (target: ratio >= 20)\n");
     const Variant h = make_variant(dir, heavy, 400, 400);
     const Variant hb{h.name, dir / "heavy-baseline.txt", dir / "heavy-baseline.ppm"};
@@ -176,7 +174,6 @@ void large_table(Bench& bench) {
     auto time_it = [&bench](const std::vector<std::string>& argv) { return bench.time_it(argv); };
     const fs::path& heavy = bench.heavy;
     const fs::path& baseline = bench.baseline;
-    // (c) Large renders.
     std::printf(
         "\n(c) large renders: Mrays/s (eye rays per second, wall) and ratio to the baseline's rate\n");
     std::vector<std::pair<int, int>> sizes{{3840, 2160}, {7680, 4320}};
