@@ -3,11 +3,10 @@
 //
 // The tree is built binary (bvh_build.h) and collapsed into nodes of Width children,
 // whose boxes are stored as structure of arrays and tested against a ray in one loop
-// over the lanes that the compiler turns into vector instructions (4 doubles to an
-// AVX2 register, 8 to an AVX-512 one): Embree's BVH4/BVH8 (I. Wald et al., "Embree: A
-// Kernel Framework for Efficient CPU Ray Tracing", ACM TOG 33(4), 2014). Children are
-// visited nearest first; the closest-hit query skips a subtree that starts beyond the
-// nearest root found so far.
+// over the lanes that the compiler turns into vector instructions (8 doubles, one
+// AVX-512 register or two AVX2 ones, measured faster here than 4): Embree's BVH4/BVH8 (I. Wald et al.,
+// "Embree: A Kernel Framework for Efficient CPU Ray Tracing", ACM TOG 33(4), 2014). Children are visited
+// nearest first; the closest-hit query skips a subtree that starts beyond the nearest root found so far.
 //
 // Exactness: a query returns what brute_force.h returns, bit for bit. Each ellipsoid's
 // box is its axis-aligned bounding box grown by kInflation of each scale, a gap of
@@ -54,7 +53,7 @@
 
 namespace rt {
 
-template <typename Real, int Width = 4>
+template <typename Real, int Width = 8>
 class Bvh {
 public:
     using V = Vec3<Real>;
@@ -70,19 +69,18 @@ public:
     NearestHit<Real> closest(const V& origin, const V& direction, double min_t) const {
         const Real beyond = visible_beyond(Real(min_t));
         NearestHit<Real> best;
-        traverse<true>(origin, direction, C(min_t), std::numeric_limits<C>::infinity(),
-                       [&](Child leaf, C& t1) {
-                           for (std::uint32_t k = leaf.first; k < leaf.first + leaf.count; ++k) {
-                               Real t;
-                               bool inside;
-                               if (visible_root(intersect(items_[k], origin, direction), beyond, t, inside) &&
-                                   best.replaced_by(t, index_[k])) {
-                                   best = {index_[k], t, inside};
-                                   t1 = C(t);  // a box entered beyond it cannot hold a nearer root
-                               }
-                           }
-                           return false;
-                       });
+        traverse<true>(origin, direction, std::numeric_limits<C>::infinity(), [&](Child leaf, C& t1) {
+            for (std::uint32_t k = leaf.first; k < leaf.first + leaf.count; ++k) {
+                Real t;
+                bool inside;
+                if (visible_root(intersect(items_[k], origin, direction), beyond, t, inside) &&
+                    best.replaced_by(t, index_[k])) {
+                    best = {index_[k], t, inside};
+                    t1 = C(t);  // a box entered beyond it cannot hold a nearer root
+                }
+            }
+            return false;
+        });
         return best;
     }
 
@@ -91,7 +89,7 @@ public:
     bool occluded(const V& point, const V& to_light, std::uint32_t& blocker) const {
         if (blocker < items_.size() && blocks_segment(items_[blocker], point, to_light)) return true;
         bool blocked = false;
-        traverse<false>(point, to_light, C(kShadowRayMinT), C(1), [&](Child leaf, C&) {
+        traverse<false>(point, to_light, C(1), [&](Child leaf, C&) {
             for (std::uint32_t k = leaf.first; k < leaf.first + leaf.count; ++k)
                 if (k != blocker && blocks_segment(items_[k], point, to_light)) {
                     blocker = k;
@@ -113,69 +111,73 @@ private:
     struct Child {  // trivial: the traversal's stack is not initialised
         std::uint32_t first, count;
     };
-    // Width children; their boxes, by axis and lane, and guards: a child may be culled
-    // for a ray whose origin lies within this max-norm distance of each of its corners.
+    // Width children; their boxes (side 0 the low corner, 1 the high one), by axis and
+    // lane, and guards: a child may be culled for a ray whose origin lies within this
+    // max-norm distance of each of its corners.
     struct Node {
-        C lo[3][Width], hi[3][Width];
+        C box[2][3][Width];
         C guard[Width];
         Child child[Width];
-        int used;  // children 0 .. used - 1
+        unsigned used;  // bit k for each child k in use
     };
     struct StackEntry {
         Child child;
-        C near;  // where the ray enters its box (t0 where unculled)
+        C near;  // where the ray enters its box
+    };
+    // A ray as the slab tests take it: its origin and the inverse of its direction.
+    struct SlabRay {
+        C o[3], inv[3];
     };
     // The binary tree's depth is below 32 + log2(N) (bvh_build.h), so that of the
     // wide tree too, and each level leaves at most Width - 1 entries on the stack.
     static constexpr int kStack = 96 * (Width - 1) + 1;
 
-    // Visits the leaves whose boxes the ray may meet within [t0, t1], nearest first
+    // Visits the leaves whose boxes the ray may meet within [0, t1], nearest first
     // where kNearestFirst (else in any order: any hit will do); leaf(child, t1) may
     // lower t1 and returns true to end the search.
     template <bool kNearestFirst, typename Leaf>
-    void traverse(const V& origin, const V& direction, C t0, C t1, Leaf leaf) const;
+    void traverse(const V& origin, const V& direction, C t1, Leaf leaf) const;
     template <bool kNearestFirst, bool kGuarded, typename Leaf>
-    void traverse(const C (&o)[3], const C (&inv)[3], C t0, C t1, Leaf leaf) const;
+    void traverse(const SlabRay& ray, C t1, Leaf leaf) const;
 
-    // Which children of node the ray may meet within [t0, t1] (bit k for child k), and
+    // Which children of node the ray may meet within [0, t1] (bit k for child k), and
     // where it enters each. A slab is computed with at most 3 roundings, so the far end
-    // is widened by 2 gamma(3) (pbrt-v4, section 6.8.2). A box that holds the origin is
-    // always met, from t0 (the tangent roots above).
+    // is widened by 2 gamma(3) (pbrt-v4, section 6.8.2). The slabs are clipped at t = 0,
+    // not at the query's own start, so that a box holding the origin inside is always
+    // met (the tangent roots above; a point on a surface lies inside its box's gap):
+    // there each slab's near end is <= 0 and its far end >= 0, signs that the rounding
+    // of (plane - o) * inv keeps exactly.
     // kGuarded: the ray's origin is known to be within every guard distance.
     template <bool kGuarded>
-    static unsigned meets(const Node& node, const C (&o)[3], const C (&inv)[3], C t0, C t1,
-                          C (&near)[Width]) {
+    static unsigned meets(const Node& node, const SlabRay& ray, C t1, C (&near)[Width]) {
         constexpr C kEps = std::numeric_limits<C>::epsilon() / 2;
         constexpr C kWiden = 1 + 2 * (3 * kEps / (1 - 3 * kEps));
-        C enter[Width], leave[Width], farthest[Width], outside[Width];
-        for (int k = 0; k < Width; ++k) enter[k] = t0, leave[k] = t1, farthest[k] = 0, outside[k] = 0;
+        C enter[Width], leave[Width], farthest[Width];
+        for (int k = 0; k < Width; ++k) enter[k] = 0, leave[k] = t1, farthest[k] = 0;
         for (int a = 0; a < 3; ++a) {
-            const C* lo = node.lo[a];
-            const C* hi = node.hi[a];
-            const C from = o[a], scale = inv[a];
+            const C* lo = node.box[0][a];
+            const C* hi = node.box[1][a];
+            const C from = ray.o[a], scale = ray.inv[a];
             RT_VECTOR_LOOP
             for (int k = 0; k < Width; ++k) {
-                const C from_lo = lo[k] - from, from_hi = hi[k] - from;
-                const C p = from_lo * scale, q = from_hi * scale;
+                const C to_lo = lo[k] - from, to_hi = hi[k] - from;
+                const C p = to_lo * scale, q = to_hi * scale;
                 const C first = p < q ? p : q, last = (p < q ? q : p) * kWiden;
                 enter[k] = first > enter[k] ? first : enter[k];
                 leave[k] = last < leave[k] ? last : leave[k];
-                outside[k] = ((from_lo > 0) | (from_hi < 0)) ? C(1) : outside[k];
                 if (kGuarded) continue;
-                const C reach = std::max(std::abs(from_lo), std::abs(from_hi));
+                const C reach = std::max(std::abs(to_lo), std::abs(to_hi));
                 farthest[k] = reach > farthest[k] ? reach : farthest[k];
             }
         }
-        bool hit[Width];
+        unsigned mask = 0;
         RT_VECTOR_LOOP
         for (int k = 0; k < Width; ++k) {
-            const bool cullable = (kGuarded || farthest[k] <= node.guard[k]) && outside[k] != 0;
-            hit[k] = !cullable || enter[k] <= leave[k];
-            near[k] = cullable ? enter[k] : t0;
+            const bool met = enter[k] <= leave[k] || (!kGuarded && farthest[k] > node.guard[k]);
+            mask |= met ? 1U << k : 0U;
+            near[k] = kGuarded || farthest[k] <= node.guard[k] ? enter[k] : C(0);
         }
-        unsigned mask = 0;
-        for (int k = 0; k < Width; ++k) mask |= hit[k] && k < node.used ? 1U << k : 0U;
-        return mask;
+        return mask & node.used;
     }
 
     std::uint32_t collapse(const std::vector<BuildNode<C>>& binary, std::uint32_t b);
@@ -191,61 +193,74 @@ private:
 
 template <typename Real, int Width>
 template <bool kNearestFirst, typename Leaf>
-void Bvh<Real, Width>::traverse(const V& origin, const V& direction, C t0, C t1, Leaf leaf) const {
+void Bvh<Real, Width>::traverse(const V& origin, const V& direction, C t1, Leaf leaf) const {
     if (items_.empty()) return;
-    const C o[3] = {C(origin.x), C(origin.y), C(origin.z)};
+    SlabRay ray;
     const C d[3] = {C(direction.x), C(direction.y), C(direction.z)};
-    const C inv[3] = {1 / d[0], 1 / d[1], 1 / d[2]};
-    // A component below 1 / max (a scene of subnormal numbers) has an infinite inverse,
-    // which makes a slab's t = (lo - o) * inv infinite where it is finite, and culls boxes
-    // the ray enters: such a ray is tried against every ellipsoid, as by the definition.
-    for (int a = 0; a < 3; ++a)
-        if (d[a] != 0 && !(std::abs(inv[a]) <= std::numeric_limits<C>::max())) {
-            C all_t1 = t1;
-            leaf(Child{0, static_cast<std::uint32_t>(items_.size())}, all_t1);
+    for (int a = 0; a < 3; ++a) {
+        ray.inv[a] = 1 / d[a];
+        // A component below 1 / max (a scene of subnormal numbers) has an infinite
+        // inverse, which makes a slab's t = (plane - o) * inv infinite where it is
+        // finite, and culls boxes the ray enters: such a ray is tried against every
+        // ellipsoid, as by the definition.
+        if (d[a] != 0 && !(std::abs(ray.inv[a]) <= std::numeric_limits<C>::max())) {
+            leaf(Child{0, static_cast<std::uint32_t>(items_.size())}, t1);
             return;
         }
+    }
+    ray.o[0] = C(origin.x), ray.o[1] = C(origin.y), ray.o[2] = C(origin.z);
     // Nearly every ray starts within every guard distance (the scene is far smaller than
     // 1e6 of its smallest scale): then no node needs its guards checked.
     C farthest = 0;
     for (int a = 0; a < 3; ++a)
-        farthest = std::max({farthest, std::abs(bounds_.lo[a] - o[a]), std::abs(bounds_.hi[a] - o[a])});
+        farthest =
+            std::max({farthest, std::abs(bounds_.lo[a] - ray.o[a]), std::abs(bounds_.hi[a] - ray.o[a])});
     if (farthest <= guard_)
-        traverse<kNearestFirst, true>(o, inv, t0, t1, leaf);
+        traverse<kNearestFirst, true>(ray, t1, leaf);
     else
-        traverse<kNearestFirst, false>(o, inv, t0, t1, leaf);
+        traverse<kNearestFirst, false>(ray, t1, leaf);
 }
 
+// Down the tree from the root: at each node the ray goes on into the first child it
+// meets (the nearest where kNearestFirst) and leaves the others on the stack, so a
+// node met by one child's box only costs no stack traffic (as Embree's traversal).
 template <typename Real, int Width>
 template <bool kNearestFirst, bool kGuarded, typename Leaf>
-void Bvh<Real, Width>::traverse(const C (&o)[3], const C (&inv)[3], C t0, C t1, Leaf leaf) const {
+void Bvh<Real, Width>::traverse(const SlabRay& ray, C t1, Leaf leaf) const {
     StackEntry stack[kStack];  // NOLINT(cppcoreguidelines-pro-type-member-init): written before read
     int size = 0;
-    stack[size++] = {root_, t0};
-    while (size > 0) {
-        const StackEntry entry = stack[--size];
-        if (entry.near > t1) continue;  // t1 came down since it was pushed
-        if (entry.child.count > 0) {
-            if (leaf(entry.child, t1)) return;
-            continue;
+    Child current = root_;
+    for (;;) {
+        while (current.count == 0) {
+            const Node& node = nodes_[current.first];
+            C near[Width];
+            unsigned mask = meets<kGuarded>(node, ray, t1, near);
+            if (mask == 0) break;
+            int k = lowest_bit(mask);
+            mask &= mask - 1;
+            if (!kNearestFirst) {
+                for (; mask != 0; mask &= mask - 1) stack[size++] = {node.child[lowest_bit(mask)], 0};
+                current = node.child[k];
+                continue;
+            }
+            // The others pushed farthest first, so that the nearest is popped next.
+            const int pushed = size;
+            for (; mask != 0; mask &= mask - 1) {
+                int j = lowest_bit(mask);
+                if (near[j] < near[k]) std::swap(j, k);
+                int at = size++;
+                for (; at > pushed && stack[at - 1].near < near[j]; --at) stack[at] = stack[at - 1];
+                stack[at] = {node.child[j], near[j]};
+            }
+            current = node.child[k];
         }
-        const Node& node = nodes_[entry.child.first];
-        C near[Width];
-        unsigned mask = meets<kGuarded>(node, o, inv, t0, t1, near);
-        if (!kNearestFirst) {
-            for (; mask != 0; mask &= mask - 1) stack[size++] = {node.child[lowest_bit(mask)], t0};
-            continue;
-        }
-        // Pushed farthest first, so that the nearest is visited next.
-        StackEntry hits[Width];
-        int count = 0;
-        for (; mask != 0; mask &= mask - 1) {
-            const int k = lowest_bit(mask);
-            int at = count++;
-            for (; at > 0 && hits[at - 1].near < near[k]; --at) hits[at] = hits[at - 1];
-            hits[at] = {node.child[k], near[k]};
-        }
-        for (int k = 0; k < count; ++k) stack[size++] = hits[k];
+        if (current.count > 0 && leaf(current, t1)) return;
+        // The next entry that may still be met: t1 may have come down since it was pushed.
+        do {
+            if (size == 0) return;
+            --size;
+        } while (stack[size].near > t1);
+        current = stack[size].child;
     }
 }
 
@@ -327,15 +342,15 @@ std::uint32_t Bvh<Real, Width>::collapse(const std::vector<BuildNode<C>>& binary
     const auto index = static_cast<std::uint32_t>(nodes_.size());
     nodes_.emplace_back();
     Node node{};
-    for (int k = 0; k < Width; ++k) {  // unused lanes: an empty box, never met
+    for (int k = 0; k < Width; ++k) {  // unused lanes: an empty box, not in used
         for (int a = 0; a < 3; ++a)
-            node.lo[a][k] = std::numeric_limits<C>::max(), node.hi[a][k] = -node.lo[a][k];
+            node.box[0][a][k] = std::numeric_limits<C>::max(), node.box[1][a][k] = -node.box[0][a][k];
         node.guard[k] = std::numeric_limits<C>::max();
     }
-    node.used = used;
+    node.used = (1U << used) - 1;
     for (int k = 0; k < used; ++k) {
         const BuildNode<C>& child = binary[lanes[k]];
-        for (int a = 0; a < 3; ++a) node.lo[a][k] = child.box.lo[a], node.hi[a][k] = child.box.hi[a];
+        for (int a = 0; a < 3; ++a) node.box[0][a][k] = child.box.lo[a], node.box[1][a][k] = child.box.hi[a];
         node.guard[k] = child.guard;
         node.child[k] =
             child.count > 0 ? Child{child.first, child.count} : Child{collapse(binary, lanes[k]), 0};
