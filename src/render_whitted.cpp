@@ -12,6 +12,7 @@
 #include "raytracer/render.h"
 #include "raytracer/row_ring.h"
 #include "raytracer/whitted.h"
+#include "raytracer/whitted_tiles.h"
 
 namespace rt {
 
@@ -40,14 +41,19 @@ unsigned thread_count(const Scene& scene, unsigned threads) {
                               static_cast<unsigned>(scene.rows));
 }
 
-// Each pixel on its own through Whitted<Real, Geometry> on count threads, rows shared.
-template <typename Real, typename Geometry>
+// Bands of a few rows from a shared counter, so that a thread that draws cheap rows
+// takes more of them; the rows go to the sink from a ring as they are finished.
+constexpr int kBandRows = 4;
+// A tile: kBandRows rows by kTileColumns columns, traced together (whitted_tiles.h).
+constexpr int kTileColumns = 4;
+
+// The image through Whitted<Real, Geometry> on count threads, rows shared: each pixel on
+// its own, or where kTiles a tile at a time (the same bytes).
+template <bool kTiles, typename Real, typename Geometry>
 void render_pixels_to(const Scene& scene, Geometry geometry, RowSink& sink, unsigned count) {
     const Whitted<Real, Geometry> tracer(scene, std::move(geometry));
+    const WhittedTiles<kBandRows * kTileColumns, Real, Geometry> tiles(tracer);
     const std::size_t row_bytes = static_cast<std::size_t>(scene.columns) * 3;
-    // Bands of a few rows from a shared counter, so that a thread that draws cheap rows
-    // takes more of them; the rows go to the sink from a ring as they are finished.
-    constexpr int kBandRows = 4;
     RowRing ring(sink, scene.rows, row_bytes, kBandRows, count);
     std::vector<Real> column_x(static_cast<std::size_t>(scene.columns));
     for (int c = 0; c < scene.columns; ++c) column_x[static_cast<std::size_t>(c)] = tracer.column_x(c);
@@ -60,13 +66,29 @@ void render_pixels_to(const Scene& scene, Geometry geometry, RowSink& sink, unsi
         for (int r = next_row.fetch_add(kBandRows); r < scene.rows; r = next_row.fetch_add(kBandRows)) {
             const int end = std::min(r + kBandRows, scene.rows);
             ring.reserve(end);
-            for (int row = r; row < end; ++row) {
-                std::uint8_t* const out = ring.row(row);
-                const Real y = tracer.row_y(row);
-                for (std::size_t c = 0; c < column_x.size(); ++c)
-                    tracer.pixel(column_x[c], y, out + c * 3, scratch);
-                ring.finish(row);
+            if constexpr (kTiles) {
+                for (int c0 = 0; c0 < scene.columns; c0 += kTileColumns) {
+                    Real x[kBandRows * kTileColumns] = {}, y[kBandRows * kTileColumns] = {};
+                    std::uint8_t* out[kBandRows * kTileColumns] = {};
+                    unsigned lanes = 0;
+                    for (int row = r; row < end; ++row)
+                        for (int c = c0; c < std::min(c0 + kTileColumns, scene.columns); ++c) {
+                            const int k = (row - r) * kTileColumns + (c - c0);
+                            x[k] = column_x[static_cast<std::size_t>(c)], y[k] = tracer.row_y(row);
+                            out[k] = ring.row(row) + static_cast<std::size_t>(c) * 3;
+                            lanes |= 1U << k;
+                        }
+                    tiles.pixels(x, y, lanes, out, scratch);
+                }
+            } else {
+                for (int row = r; row < end; ++row) {
+                    std::uint8_t* const out = ring.row(row);
+                    const Real y = tracer.row_y(row);
+                    for (std::size_t c = 0; c < column_x.size(); ++c)
+                        tracer.pixel(column_x[c], y, out + c * 3, scratch);
+                }
             }
+            for (int row = r; row < end; ++row) ring.finish(row);
         }
     };
     using TakeRows = decltype(take_rows);
@@ -83,13 +105,13 @@ void render_pixels_to(const Scene& scene, Geometry geometry, RowSink& sink, unsi
 template <typename Real>
 void render_whitted_to(const Scene& scene, RowSink& sink, unsigned threads) {
     const unsigned count = thread_count(scene, threads);
-    render_pixels_to<Real>(scene, Bvh<Real>(make_ellipsoids<Real>(scene), count), sink, count);
+    render_pixels_to<true, Real>(scene, Bvh<Real>(make_ellipsoids<Real>(scene), count), sink, count);
 }
 
 template <typename Real>
 void render_reference_to(const Scene& scene, RowSink& sink, unsigned threads) {
-    render_pixels_to<Real>(scene, BruteForce<Real>(make_ellipsoids<Real>(scene)), sink,
-                           thread_count(scene, threads));
+    render_pixels_to<false, Real>(scene, BruteForce<Real>(make_ellipsoids<Real>(scene)), sink,
+                                  thread_count(scene, threads));
 }
 
 // As in render.cpp: double for raytracer.exe, float and long double for the tests.

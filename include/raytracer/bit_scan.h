@@ -28,4 +28,11 @@ inline int lowest_bit(std::uint64_t x) {
 #endif
 }
 
+// How many bits of x are set.
+inline int bit_count(std::uint64_t x) {
+    int count = 0;
+    for (; x != 0; x &= x - 1) ++count;
+    return count;
+}
+
 }  // namespace rt

@@ -84,17 +84,110 @@ public:
         return best;
     }
 
+    // closest() for each lane k in `lanes` of a bundle of rays from one origin (eye
+    // rays), into hits[k]. The bundle goes down the tree as one slab ray, nearest first,
+    // until no lane can find a nearer root; in a leaf each lane's ray is tried against
+    // each ellipsoid's box, then exactly. Rays from different origins go one by one:
+    // their bundle would widen without end.
+    template <int N>
+    void closest(const V (&origins)[N], const V (&directions)[N], unsigned lanes, double min_t,
+                 NearestHit<Real> (&hits)[N]) const {
+        for (unsigned m = lanes; m != 0; m &= m - 1) hits[lowest_bit(m)] = {};
+        SlabRay ray;
+        C o_lo[3], o_hi[3];
+        const bool bundled = lanes != 0 && (lanes & (lanes - 1)) != 0 && !items_.empty() &&
+                             bundle_of(origins, directions, lanes, ray, o_lo, o_hi) && o_lo[0] == o_hi[0] &&
+                             o_lo[1] == o_hi[1] && o_lo[2] == o_hi[2] && guarded(o_lo, o_hi);
+        if (!bundled) {
+            for (unsigned m = lanes; m != 0; m &= m - 1)
+                hits[lowest_bit(m)] = closest(origins[lowest_bit(m)], directions[lowest_bit(m)], min_t);
+            return;
+        }
+        const Real beyond = visible_beyond(Real(min_t));
+        LaneRays<N> rays;
+        for (unsigned m = lanes; m != 0; m &= m - 1)
+            rays.set(lowest_bit(m), origins[lowest_bit(m)], directions[lowest_bit(m)],
+                     std::numeric_limits<C>::infinity());
+        traverse<true, true>(ray, std::numeric_limits<C>::infinity(), [&](Child leaf, C& t1) {
+            for (std::uint32_t i = leaf.first; i < leaf.first + leaf.count; ++i)
+                for (unsigned m = lanes & rays.meeting(item_box(items_[i])); m != 0; m &= m - 1) {
+                    const int k = lowest_bit(m);
+                    Real t;
+                    bool inside;
+                    if (visible_root(intersect(items_[i], origins[k], directions[k]), beyond, t, inside) &&
+                        hits[k].replaced_by(t, index_[i]))
+                        hits[k] = {index_[i], t, inside}, rays.t1[k] = C(t);
+                }
+            C farthest = 0;  // no box entered beyond every lane's nearest root holds a nearer one
+            for (unsigned m = lanes; m != 0; m &= m - 1)
+                farthest = std::max(farthest, rays.t1[lowest_bit(m)]);
+            t1 = farthest;
+            return false;
+        });
+    }
+
     // As BruteForce::occluded(): whether some ellipsoid blocks the shadow ray, trying
     // first the one that blocked this light last (blocker: a position in leaf order).
     bool occluded(const V& point, const V& to_light, std::uint32_t& blocker) const {
         if (blocker < items_.size() && blocks_segment(items_[blocker], point, to_light)) return true;
-        bool blocked = false;
-        traverse<false>(point, to_light, C(1), [&](Child leaf, C&) {
-            for (std::uint32_t k = leaf.first; k < leaf.first + leaf.count; ++k)
-                if (k != blocker && blocks_segment(items_[k], point, to_light)) {
-                    blocker = k;
-                    return blocked = true;
+        return blocked_past(point, to_light, blocker, blocker);
+    }
+
+    // occluded() for each lane k in `lanes` (bit k) of a bundle of shadow rays from
+    // points[k] to the light at `light` (to_light = light - points[k], as the shading
+    // computes it): the lanes that some ellipsoid blocks. The bundle goes down the tree
+    // as one slab ray and its lanes are tried one by one in the leaves it reaches: one
+    // descent instead of one a ray, where the points lie close (a tile's points on one
+    // ellipsoid). Its edges converge on the light: point + t (light - point) is
+    // (1 - t) point + t light, so for 0 <= t <= 1 each coordinate lies between
+    // o_lo + t (light - o_lo) and o_hi + t (light - o_hi), widened by the rounding of
+    // to_light and of those differences (a few ulps of |light| + |point|).
+    template <int N>
+    unsigned occluded(const V (&points)[N], const V& light, unsigned lanes, std::uint32_t& blocker) const {
+        V to_light[N];
+        for (unsigned m = lanes; m != 0; m &= m - 1) to_light[lowest_bit(m)] = light - points[lowest_bit(m)];
+        unsigned blocked = 0;
+        const std::uint32_t tried = blocker;
+        if (blocker < items_.size())
+            for (unsigned m = lanes; m != 0; m &= m - 1)
+                if (blocks_segment(items_[blocker], points[lowest_bit(m)], to_light[lowest_bit(m)]))
+                    blocked |= 1U << lowest_bit(m);
+        unsigned open = lanes & ~blocked;
+        if (open == 0 || items_.empty()) return blocked;
+        C o_lo[3], o_hi[3], d_lo[3], d_hi[3];
+        for (int a = 0; a < 3; ++a) o_lo[a] = std::numeric_limits<C>::infinity(), o_hi[a] = -o_lo[a];
+        for (unsigned m = open; m != 0; m &= m - 1) {
+            const V& p = points[lowest_bit(m)];
+            const C o[3] = {C(p.x), C(p.y), C(p.z)};
+            for (int a = 0; a < 3; ++a) o_lo[a] = std::min(o_lo[a], o[a]), o_hi[a] = std::max(o_hi[a], o[a]);
+        }
+        const C to[3] = {C(light.x), C(light.y), C(light.z)};
+        for (int a = 0; a < 3; ++a) {
+            const C slack = 4 * C(scene_epsilon<Real>()) *
+                            (std::abs(to[a]) + std::max(std::abs(o_lo[a]), std::abs(o_hi[a])));
+            d_lo[a] = (to[a] - o_lo[a]) - slack, d_hi[a] = (to[a] - o_hi[a]) + slack;
+        }
+        SlabRay ray;
+        if ((open & (open - 1)) == 0 || !slab_ray(o_lo, o_hi, d_lo, d_hi, ray) || !guarded(o_lo, o_hi)) {
+            for (unsigned m = open; m != 0; m &= m - 1)  // one ray, or a bundle beyond the fast case
+                if (blocked_past(points[lowest_bit(m)], to_light[lowest_bit(m)], tried, blocker))
+                    blocked |= 1U << lowest_bit(m);
+            return blocked;
+        }
+        // In a leaf, each lane's own ray is tried against each ellipsoid's box first.
+        LaneRays<N> rays;
+        for (unsigned m = open; m != 0; m &= m - 1)
+            rays.set(lowest_bit(m), points[lowest_bit(m)], to_light[lowest_bit(m)], 1);
+        traverse<false, true>(ray, C(1), [&](Child leaf, C&) {
+            for (std::uint32_t i = leaf.first; i < leaf.first + leaf.count; ++i) {
+                if (i == tried) continue;
+                for (unsigned m = open & rays.meeting(item_box(items_[i])); m != 0; m &= m - 1) {
+                    const int k = lowest_bit(m);
+                    if (blocks_segment(items_[i], points[k], to_light[k])) blocked |= 1U << k, blocker = i;
                 }
+                open &= ~blocked;
+                if (open == 0) return true;
+            }
             return false;
         });
         return blocked;
@@ -124,10 +217,50 @@ private:
         Child child;
         C near;  // where the ray enters its box
     };
-    // A ray as the slab tests take it: its origin and the inverse of its direction.
+    // A ray, or a bundle of rays, as the slab tests take it: per axis, two edges that
+    // hold the bundle's points at every t in [0, t1], the lower o_lo + t d_lo and the
+    // upper o_hi + t d_hi (one ray: both are the ray; interval arithmetic, as in
+    // S. Boulos et al., "Geometric and Arithmetic Culling Methods for Entire Ray
+    // Packets", University of Utah UUCS-06-010, 2006). A box [lo, hi] can be met only
+    // where the upper edge is >= lo and the lower edge <= hi: the upper edge passes lo at
+    // p = (lo - o_hi) / d_hi, from where on it is above lo if d_hi >= 0 (an entry), up
+    // to where if not (an exit); the lower edge passes hi at q = (hi - o_lo) / d_lo, an
+    // exit if d_lo >= 0, else an entry. The slab test takes [min, max] of p and q, which
+    // holds that interval where one is an entry and the other an exit (for one ray, the
+    // slab's two ends); where both are entries q is set to +inf, where both are exits p
+    // to -inf.
     struct SlabRay {
-        C o[3], inv[3];
+        C lo_from[3], lo_inv[3];  // for the box's low planes: o_hi, 1 / d_hi
+        C hi_from[3], hi_inv[3];  // for its high planes: o_lo, 1 / d_lo
     };
+    // The slab ray of a bundle's edges, or false where a direction has a component
+    // without a finite inverse (a subnormal scene; such a ray is tried against every
+    // ellipsoid: an infinite inverse makes a slab's t infinite where it is finite).
+    static bool slab_ray(const C (&o_lo)[3], const C (&o_hi)[3], const C (&d_lo)[3], const C (&d_hi)[3],
+                         SlabRay& ray) {
+        constexpr C kInf = std::numeric_limits<C>::infinity();
+        for (int a = 0; a < 3; ++a) {
+            for (const C d : {d_lo[a], d_hi[a]})
+                if (d != 0 && !(std::abs(1 / d) <= std::numeric_limits<C>::max())) return false;
+            // -0 as +0, so that a zero's sign follows the cases below.
+            ray.lo_from[a] = o_hi[a], ray.lo_inv[a] = 1 / (d_hi[a] == 0 ? C(0) : d_hi[a]);
+            ray.hi_from[a] = o_lo[a], ray.hi_inv[a] = 1 / (d_lo[a] == 0 ? C(0) : d_lo[a]);
+            if (d_lo[a] < 0 && d_hi[a] >= 0) ray.hi_from[a] = -kInf, ray.hi_inv[a] = 1;  // q = +inf
+            if (d_lo[a] >= 0 && d_hi[a] < 0) ray.lo_from[a] = kInf, ray.lo_inv[a] = 1;   // p = -inf
+        }
+        return true;
+    }
+    // Whether a ray from within the box [o_lo, o_hi] is within every guard distance
+    // (nearly every ray: the scene is far smaller than 1e6 of its smallest scale), so
+    // that no node needs its guards checked.
+    bool guarded(const C (&o_lo)[3], const C (&o_hi)[3]) const {
+        C farthest = 0;
+        for (int a = 0; a < 3; ++a)
+            farthest =
+                std::max({farthest, std::abs(bounds_.lo[a] - o_lo[a]), std::abs(bounds_.hi[a] - o_lo[a]),
+                          std::abs(bounds_.lo[a] - o_hi[a]), std::abs(bounds_.hi[a] - o_hi[a])});
+        return farthest <= guard_;
+    }
     // The binary tree's depth is below 32 + log2(N) (bvh_build.h), so that of the
     // wide tree too, and each level leaves at most Width - 1 entries on the stack.
     static constexpr int kStack = 96 * (Width - 1) + 1;
@@ -140,6 +273,66 @@ private:
     template <bool kNearestFirst, bool kGuarded, typename Leaf>
     void traverse(const SlabRay& ray, C t1, Leaf leaf) const;
 
+    // [enter, leave] clipped to one axis's slab, given its p and q (SlabRay).
+    RT_ALWAYS_INLINE static void clip_to_slab(C p, C q, C& enter, C& leave) {
+        constexpr C kEps = std::numeric_limits<C>::epsilon() / 2;
+        constexpr C kWiden = 1 + 2 * (3 * kEps / (1 - 3 * kEps));
+        const C first = p < q ? p : q, last = (p < q ? q : p) * kWiden;
+        enter = first > enter ? first : enter;
+        leave = last < leave ? last : leave;
+    }
+
+    // The rays of a bundle's lanes, by axis and lane, each to be met within [0, t1[k].
+    template <int N>
+    struct LaneRays {
+        C o[3][N] = {}, inv[3][N] = {}, t1[N] = {};
+        unsigned unculled = 0;  // lanes always met: a direction without a finite inverse
+
+        void set(int k, const V& origin, const V& direction, C end) {
+            const C d[3] = {C(direction.x), C(direction.y), C(direction.z)};
+            o[0][k] = C(origin.x), o[1][k] = C(origin.y), o[2][k] = C(origin.z), t1[k] = end;
+            for (int a = 0; a < 3; ++a) {
+                inv[a][k] = 1 / d[a];
+                if (d[a] != 0 && !(std::abs(inv[a][k]) <= std::numeric_limits<C>::max())) unculled |= 1U << k;
+            }
+        }
+        // The lanes whose guarded ray may meet the box, all lanes in one vector loop.
+        unsigned meeting(const BuildBox<C>& box) const {
+            C enter[N], leave[N];
+            for (int k = 0; k < N; ++k) enter[k] = 0, leave[k] = t1[k];
+            for (int a = 0; a < 3; ++a) {
+                const C lo = box.lo[a], hi = box.hi[a];
+                RT_VECTOR_LOOP
+                for (int k = 0; k < N; ++k)
+                    clip_to_slab((lo - o[a][k]) * inv[a][k], (hi - o[a][k]) * inv[a][k], enter[k], leave[k]);
+            }
+            unsigned mask = unculled;
+            RT_VECTOR_LOOP
+            for (int k = 0; k < N; ++k) mask |= enter[k] <= leave[k] ? 1U << k : 0U;
+            return mask;
+        }
+    };
+
+    // The slab ray of a bundle that holds every lane's ray, per axis from the least
+    // origin and direction to the greatest (valid for t >= 0), or false (see slab_ray()).
+    template <int N>
+    bool bundle_of(const V (&origins)[N], const V (&directions)[N], unsigned lanes, SlabRay& ray,
+                   C (&o_lo)[3], C (&o_hi)[3]) const {
+        C d_lo[3], d_hi[3];
+        for (int a = 0; a < 3; ++a)
+            o_lo[a] = d_lo[a] = std::numeric_limits<C>::infinity(), o_hi[a] = d_hi[a] = -o_lo[a];
+        for (unsigned m = lanes; m != 0; m &= m - 1) {
+            const int k = lowest_bit(m);
+            const C o[3] = {C(origins[k].x), C(origins[k].y), C(origins[k].z)};
+            const C d[3] = {C(directions[k].x), C(directions[k].y), C(directions[k].z)};
+            for (int a = 0; a < 3; ++a) {
+                o_lo[a] = std::min(o_lo[a], o[a]), o_hi[a] = std::max(o_hi[a], o[a]);
+                d_lo[a] = std::min(d_lo[a], d[a]), d_hi[a] = std::max(d_hi[a], d[a]);
+            }
+        }
+        return slab_ray(o_lo, o_hi, d_lo, d_hi, ray);
+    }
+
     // Which children of node the ray may meet within [0, t1] (bit k for child k), and
     // where it enters each. A slab is computed with at most 3 roundings, so the far end
     // is widened by 2 gamma(3) (pbrt-v4, section 6.8.2). The slabs are clipped at t = 0,
@@ -150,23 +343,19 @@ private:
     // kGuarded: the ray's origin is known to be within every guard distance.
     template <bool kGuarded>
     static unsigned meets(const Node& node, const SlabRay& ray, C t1, C (&near)[Width]) {
-        constexpr C kEps = std::numeric_limits<C>::epsilon() / 2;
-        constexpr C kWiden = 1 + 2 * (3 * kEps / (1 - 3 * kEps));
         C enter[Width], leave[Width], farthest[Width];
         for (int k = 0; k < Width; ++k) enter[k] = 0, leave[k] = t1, farthest[k] = 0;
         for (int a = 0; a < 3; ++a) {
             const C* lo = node.box[0][a];
             const C* hi = node.box[1][a];
-            const C from = ray.o[a], scale = ray.inv[a];
+            const C lo_from = ray.lo_from[a], lo_inv = ray.lo_inv[a];
+            const C hi_from = ray.hi_from[a], hi_inv = ray.hi_inv[a];
             RT_VECTOR_LOOP
             for (int k = 0; k < Width; ++k) {
-                const C to_lo = lo[k] - from, to_hi = hi[k] - from;
-                const C p = to_lo * scale, q = to_hi * scale;
-                const C first = p < q ? p : q, last = (p < q ? q : p) * kWiden;
-                enter[k] = first > enter[k] ? first : enter[k];
-                leave[k] = last < leave[k] ? last : leave[k];
+                const C to_lo = lo[k] - lo_from, to_hi = hi[k] - hi_from;
+                clip_to_slab(to_lo * lo_inv, to_hi * hi_inv, enter[k], leave[k]);
                 if (kGuarded) continue;
-                const C reach = std::max(std::abs(to_lo), std::abs(to_hi));
+                const C reach = std::max(std::abs(to_lo), std::abs(to_hi));  // one ray only
                 farthest[k] = reach > farthest[k] ? reach : farthest[k];
             }
         }
@@ -178,6 +367,39 @@ private:
             near[k] = kGuarded || farthest[k] <= node.guard[k] ? enter[k] : C(0);
         }
         return mask & node.used;
+    }
+
+    // An ellipsoid's box: grown by kInflation of each scale, by 4 ulps of the centre
+    // too, so that the box's own rounding stays inside the gap even for a small
+    // ellipsoid far from the origin, and by the smallest subnormal, as a scale below 500
+    // of them is its own product with 1 + kInflation: a gap of one ulp is still
+    // > kInflation of it.
+    static BuildBox<C> item_box(const Ellipsoid<Real>& e) {
+        using std::abs;
+        const C c[3] = {C(e.centre.x), C(e.centre.y), C(e.centre.z)};
+        const C s[3] = {abs(C(e.scale.x)), abs(C(e.scale.y)), abs(C(e.scale.z))};
+        BuildBox<C> box;
+        for (int a = 0; a < 3; ++a) {
+            const C half = s[a] * (1 + C(kInflation)) + abs(c[a]) * 4 * std::numeric_limits<C>::epsilon() +
+                           std::numeric_limits<C>::denorm_min();
+            box.lo[a] = c[a] - half, box.hi[a] = c[a] + half;
+        }
+        return box;
+    }
+
+    // occluded() past the hint: whether an ellipsoid other than the one tried already
+    // blocks the ray; blocker becomes the one that does.
+    bool blocked_past(const V& point, const V& to_light, std::uint32_t tried, std::uint32_t& blocker) const {
+        bool blocked = false;
+        traverse<false>(point, to_light, C(1), [&](Child leaf, C&) {
+            for (std::uint32_t k = leaf.first; k < leaf.first + leaf.count; ++k)
+                if (k != tried && blocks_segment(items_[k], point, to_light)) {
+                    blocker = k;
+                    return blocked = true;
+                }
+            return false;
+        });
+        return blocked;
     }
 
     std::uint32_t collapse(const std::vector<BuildNode<C>>& binary, std::uint32_t b);
@@ -195,27 +417,12 @@ template <typename Real, int Width>
 template <bool kNearestFirst, typename Leaf>
 void Bvh<Real, Width>::traverse(const V& origin, const V& direction, C t1, Leaf leaf) const {
     if (items_.empty()) return;
-    SlabRay ray;
+    const C o[3] = {C(origin.x), C(origin.y), C(origin.z)};
     const C d[3] = {C(direction.x), C(direction.y), C(direction.z)};
-    for (int a = 0; a < 3; ++a) {
-        ray.inv[a] = 1 / d[a];
-        // A component below 1 / max (a scene of subnormal numbers) has an infinite
-        // inverse, which makes a slab's t = (plane - o) * inv infinite where it is
-        // finite, and culls boxes the ray enters: such a ray is tried against every
-        // ellipsoid, as by the definition.
-        if (d[a] != 0 && !(std::abs(ray.inv[a]) <= std::numeric_limits<C>::max())) {
-            leaf(Child{0, static_cast<std::uint32_t>(items_.size())}, t1);
-            return;
-        }
-    }
-    ray.o[0] = C(origin.x), ray.o[1] = C(origin.y), ray.o[2] = C(origin.z);
-    // Nearly every ray starts within every guard distance (the scene is far smaller than
-    // 1e6 of its smallest scale): then no node needs its guards checked.
-    C farthest = 0;
-    for (int a = 0; a < 3; ++a)
-        farthest =
-            std::max({farthest, std::abs(bounds_.lo[a] - ray.o[a]), std::abs(bounds_.hi[a] - ray.o[a])});
-    if (farthest <= guard_)
+    SlabRay ray;
+    if (!slab_ray(o, o, d, d, ray))
+        leaf(Child{0, static_cast<std::uint32_t>(items_.size())}, t1);
+    else if (guarded(o, o))
         traverse<kNearestFirst, true>(ray, t1, leaf);
     else
         traverse<kNearestFirst, false>(ray, t1, leaf);
@@ -275,19 +482,10 @@ Bvh<Real, Width>::Bvh(std::vector<Ellipsoid<Real>> ellipsoids, unsigned threads)
     for (std::size_t i = 0; i < ellipsoids.size(); ++i) {
         using std::abs;
         const Ellipsoid<Real>& e = ellipsoids[i];
-        const C c[3] = {C(e.centre.x), C(e.centre.y), C(e.centre.z)};
         const C s[3] = {abs(C(e.scale.x)), abs(C(e.scale.y)), abs(C(e.scale.z))};
         BuildItem<C>& item = items[i];
-        for (int a = 0; a < 3; ++a) {
-            // Grown by 4 ulps of the centre too, so that the box's own rounding stays
-            // inside the gap even for a small ellipsoid far from the origin; and by the
-            // smallest subnormal, as a scale below 500 of them is its own product with
-            // 1 + kInflation: a gap of one ulp is still > kInflation of it.
-            const C half = s[a] * (1 + C(kInflation)) + abs(c[a]) * 4 * std::numeric_limits<C>::epsilon() +
-                           std::numeric_limits<C>::denorm_min();
-            item.box.lo[a] = c[a] - half, item.box.hi[a] = c[a] + half;
-            item.centre[a] = c[a];
-        }
+        item.box = item_box(e);
+        item.centre[0] = C(e.centre.x), item.centre[1] = C(e.centre.y), item.centre[2] = C(e.centre.z);
         const C guard = std::min({s[0], s[1], s[2]}) * reach / 2;
         item.guard = guard <= std::numeric_limits<C>::max() ? guard : std::numeric_limits<C>::max();
         item.index = static_cast<std::uint32_t>(i);

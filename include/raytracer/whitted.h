@@ -63,19 +63,8 @@ public:
         out[0] = to_byte(colour.x), out[1] = to_byte(colour.y), out[2] = to_byte(colour.z);
     }
 
-private:
-    struct Light {
-        V position, intensity;
-    };
-    struct Material {
-        V ambient;              // Ka * Ia * O
-        bool no_specular;       // Ks = 0 (and pow finite)
-        bool no_lighting;       // Kd = Ks = 0
-        std::int32_t exponent;  // whole_exponent(n): -1 when pow() is needed
-    };
-
-    // The colour seen along origin + t direction beyond min_t; miss when nothing is hit
-    // (BACK for eye rays, black for reflected rays).
+    // trace(): the colour seen along origin + t direction beyond min_t; miss when
+    // nothing is hit (BACK for eye rays, black for reflected rays).
     V trace(const V& origin, const V& direction, double min_t, int reflections_left, const V& miss,
             Scratch& scratch) const {
         const NearestHit<Real> hit = geometry_.closest(origin, direction, min_t);
@@ -88,36 +77,86 @@ private:
     // exactly zero is skipped (adding it changes at most the sign of a zero channel).
     V shade(const NearestHit<Real>& hit, const V& origin, const V& direction, int reflections_left,
             Scratch& scratch) const {
-        const Ellipsoid<Real>& e = geometry_.ellipsoid(hit.ellipsoid);
-        const Material& m = materials_[hit.ellipsoid];
-        V colour = m.ambient;
-        const bool reflects = e.kr > 0 && reflections_left > 0;
-        if (m.no_lighting && !reflects) return colour;
-
-        const V point = origin + direction * hit.t;
-        V normal = normalize((point - e.centre) / e.scale_squared);
-        if (hit.inside) normal = -normal;  // seen from inside: face the viewer
-        const V to_viewer = normalize(-direction);
-        for (std::size_t li = 0; li < lights_.size() && !m.no_lighting; ++li) {
-            const Light& light = lights_[li];
-            const V to_light = light.position - point;  // the light at t = 1
-            const V l = normalize(to_light);
-            const Real n_dot_l = dot(normal, l);
+        const Surface s = surface(hit, origin, direction, reflections_left);
+        V colour = s.material->ambient;
+        for (std::size_t li = 0; li < lights_.size() && s.lit; ++li) {
+            const LightRay r = light_ray(s, li);
             // A light behind the surface adds nothing, blocked or not.
-            if (!(n_dot_l > 0) || geometry_.occluded(point, to_light, scratch.blockers[li])) continue;
-            colour += light.intensity * e.kd * n_dot_l * e.colour;
-            if (m.no_specular) continue;
-            const V reflected_light = normal * (2 * n_dot_l) - l;
-            const Real r_dot_v = dot(reflected_light, to_viewer);
-            if (r_dot_v > 0)
-                colour += light.intensity * e.ks * specular_power(r_dot_v, e.shininess, m.exponent);
+            if (r.faces && !geometry_.occluded(s.point, r.to_light, scratch.blockers[li]))
+                add_light(colour, s, li, r);
         }
-        if (reflects) {
-            const V mirrored = direction - normal * (2 * dot(normal, direction));
-            colour += trace(point, mirrored, kReflectedRayMinT, reflections_left - 1, V{}, scratch) * e.kr;
-        }
+        if (s.reflects)
+            colour += trace(s.point, mirrored(s, direction), kReflectedRayMinT, reflections_left - 1, V{},
+                            scratch) *
+                      s.ellipsoid->kr;
         return colour;
     }
+
+    // The pieces of shade(), for a driver that shades many hits at once (whitted_tiles.h).
+    struct Material {
+        V ambient;              // Ka * Ia * O
+        bool no_specular;       // Ks = 0 (and pow finite)
+        bool no_lighting;       // Kd = Ks = 0
+        std::int32_t exponent;  // whole_exponent(n): -1 when pow() is needed
+    };
+    struct Surface {
+        const Ellipsoid<Real>* ellipsoid;
+        const Material* material;
+        V point, normal, to_viewer;  // the normal faces the viewer
+        bool lit;                    // some light can add to it
+        bool reflects;               // a reflected ray is traced
+    };
+    Surface surface(const NearestHit<Real>& hit, const V& origin, const V& direction,
+                    int reflections_left) const {
+        Surface s;
+        s.ellipsoid = &geometry_.ellipsoid(hit.ellipsoid);
+        s.material = &materials_[hit.ellipsoid];
+        s.point = origin + direction * hit.t;
+        s.normal = normalize((s.point - s.ellipsoid->centre) / s.ellipsoid->scale_squared);
+        if (hit.inside) s.normal = -s.normal;  // seen from inside: face the viewer
+        s.to_viewer = normalize(-direction);
+        s.lit = !s.material->no_lighting;
+        s.reflects = s.ellipsoid->kr > 0 && reflections_left > 0;
+        return s;
+    }
+    struct LightRay {
+        V to_light;  // the light at t = 1
+        V l;         // unit
+        Real n_dot_l;
+        bool faces;  // N.L > 0
+    };
+    LightRay light_ray(const Surface& s, std::size_t li) const {
+        LightRay r;
+        r.to_light = lights_[li].position - s.point;
+        r.l = normalize(r.to_light);
+        r.n_dot_l = dot(s.normal, r.l);
+        r.faces = r.n_dot_l > 0;
+        return r;
+    }
+    // The diffuse and specular terms of an unblocked light.
+    void add_light(V& colour, const Surface& s, std::size_t li, const LightRay& r) const {
+        const Light& light = lights_[li];
+        const Ellipsoid<Real>& e = *s.ellipsoid;
+        colour += light.intensity * e.kd * r.n_dot_l * e.colour;
+        if (s.material->no_specular) return;
+        const V reflected_light = s.normal * (2 * r.n_dot_l) - r.l;
+        const Real r_dot_v = dot(reflected_light, s.to_viewer);
+        if (r_dot_v > 0)
+            colour += light.intensity * e.ks * specular_power(r_dot_v, e.shininess, s.material->exponent);
+    }
+    static V mirrored(const Surface& s, const V& direction) {
+        return direction - s.normal * (2 * dot(s.normal, direction));
+    }
+    std::size_t light_count() const { return lights_.size(); }
+    const V& light_position(std::size_t li) const { return lights_[li].position; }
+    const Geometry& geometry() const { return geometry_; }
+    const V& background() const { return background_; }
+    Real near_z() const { return near_z_; }
+
+private:
+    struct Light {
+        V position, intensity;
+    };
 
     Geometry geometry_;  // holds the ellipsoids
     std::vector<Light> lights_;
