@@ -1,0 +1,154 @@
+// The tree's bundle queries (Bvh::closest() and Bvh::occluded() for the lanes of a
+// tile, whitted_tiles.h) answer, lane by lane, as BruteForce answers each ray alone:
+// on crowds of thin, tiny, huge, negated, touching and far ellipsoids; for bundles
+// tight and wide, with directions that straddle zero or hold +0 and -0 on one axis,
+// with lights on a surface, and with every subset of lanes.
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include "check.h"
+#include "random_checks.h"
+#include "raytracer/brute_force.h"
+#include "raytracer/bvh.h"
+#include "stress_scenes.h"
+
+namespace {
+
+constexpr int kLanes = 16;
+
+template <typename Real>
+struct Crowd {
+    std::vector<rt::Ellipsoid<Real>> all;
+    std::vector<rt::Vec3<Real>> lights;
+};
+
+// n ellipsoids of the kinds the boxes' margins must hold for, and the scene's lights.
+template <typename Real>
+Crowd<Real> crowd(unsigned seed, int n) {
+    std::mt19937 g(seed);
+    const rt::Scene s = stress::random_scene(seed);
+    Crowd<Real> c;
+    for (const rt::SphereSpec& e : s.spheres) c.all.push_back(rt::make_ellipsoid<Real>(e));
+    while (static_cast<int>(c.all.size()) < n) {
+        rt::SphereSpec e = s.spheres[g() % s.spheres.size()];
+        // Odd seeds: also ellipsoids so thin that the scene is beyond their guard
+        // distance (bvh.h), where bundles go ray by ray; even seeds: the bundled path.
+        const unsigned kind = seed % 2 ? g() % 6 : 1 + g() % 5;
+        if (seed % 2 == 0 && kind == 2) continue;
+        const double size = kind == 0 ? 1e-5 : kind == 1 ? 3 : uniform(g, 0.02, 0.6);
+        e.centre = {uniform(g, -5, 5), uniform(g, -5, 5), uniform(g, -14, 1)};
+        e.scale = {size * uniform(g, 0.3, 1), size * uniform(g, 0.3, 1), size * uniform(g, 0.3, 1)};
+        if (kind == 2) e.scale.z = 1e-7;        // paper-thin
+        if (kind == 3) e.scale.x = -e.scale.x;  // negated
+        if (kind == 4) {                        // touching the previous one
+            const rt::Ellipsoid<Real>& last = c.all.back();
+            e.centre = rt::Vec3<double>::from(last.centre) +
+                       rt::Vec3<double>{double(last.scale.x) + e.scale.x, 0, 0};
+        }
+        c.all.push_back(rt::make_ellipsoid<Real>(e));
+    }
+    for (const rt::LightSpec& l : s.lights) c.lights.push_back(rt::Vec3<Real>::from(l.position));
+    return c;
+}
+
+// A point on e's surface in direction u from its centre.
+template <typename Real>
+rt::Vec3<Real> on_surface(const rt::Ellipsoid<Real>& e, const rt::Vec3<Real>& u) {
+    return e.centre + normalize(u) * e.scale;
+}
+
+// Bundles of shadow rays from patches of a surface (tight, or spread over the whole
+// ellipsoid) to a light (a scene light, a point on another surface, or one on the
+// patch's own ellipsoid), against each lane's BruteForce::occluded().
+template <typename Real>
+int shadow_lanes_differing(const Crowd<Real>& c, unsigned seed, int bundles) {
+    using V = rt::Vec3<Real>;
+    const rt::BruteForce<Real> plain(c.all);
+    const rt::Bvh<Real> tree(c.all);
+    std::mt19937 g(seed);
+    int differing = 0;
+    std::uint32_t hint = rt::kNoBlocker;  // carried from bundle to bundle, as in a render
+    for (int b = 0; b < bundles; ++b) {
+        const rt::Ellipsoid<Real>& on = c.all[g() % c.all.size()];
+        const double spread = g() % 2 ? 0.01 : 1.0;
+        const V u0{Real(uniform(g, -1, 1)), Real(uniform(g, -1, 1)), Real(uniform(g, -1, 1))};
+        V points[kLanes];
+        for (V& p : points)
+            p = on_surface(on, u0 + V{Real(uniform(g, -spread, spread)), Real(uniform(g, -spread, spread)),
+                                      Real(uniform(g, -spread, spread))});
+        const unsigned kind = g() % 3;
+        const V light = kind == 0   ? c.lights[g() % c.lights.size()]
+                        : kind == 1 ? on_surface(c.all[g() % c.all.size()], points[0] - on.centre)
+                                    : on_surface(on, -u0);
+        const auto lanes = static_cast<unsigned>(g() & 0xFFFF);
+        const unsigned blocked = tree.occluded(points, light, lanes, hint);
+        for (int k = 0; k < kLanes; ++k) {
+            if ((lanes >> k & 1U) == 0) continue;
+            std::uint32_t plain_hint = rt::kNoBlocker;
+            differing += plain.occluded(points[k], light - points[k], plain_hint) != ((blocked >> k & 1U) != 0);
+        }
+    }
+    return differing;
+}
+
+// Bundles of rays from one origin (the camera, a surface point, anywhere) in a narrow or
+// wide cone, some with a direction component of +0 or -0, against each lane's
+// BruteForce::closest().
+template <typename Real>
+int closest_lanes_differing(const Crowd<Real>& c, unsigned seed, int bundles) {
+    using V = rt::Vec3<Real>;
+    const rt::BruteForce<Real> plain(c.all);
+    const rt::Bvh<Real> tree(c.all);
+    std::mt19937 g(seed);
+    int differing = 0;
+    for (int b = 0; b < bundles; ++b) {
+        const unsigned kind = g() % 3;
+        const rt::Ellipsoid<Real>& from = c.all[g() % c.all.size()];
+        const V origin = kind == 0   ? V{}
+                         : kind == 1 ? on_surface(from, V{Real(uniform(g, -1, 1)), Real(1), Real(0.5)})
+                                     : V{Real(uniform(g, -6, 6)), Real(uniform(g, -6, 6)), Real(uniform(g, -6, 6))};
+        const V aim = c.all[g() % c.all.size()].centre - origin;
+        const double spread = g() % 2 ? 0.02 : 0.5;
+        V origins[kLanes], directions[kLanes];
+        for (int k = 0; k < kLanes; ++k) {
+            origins[k] = origin;
+            directions[k] = aim + V{Real(uniform(g, -spread, spread)), Real(uniform(g, -spread, spread)),
+                                    Real(uniform(g, -spread, spread))} *
+                                      Real(length(aim));
+            if (g() % 8 == 0) directions[k].x = k % 2 ? Real(0) : -Real(0);
+        }
+        const auto lanes = static_cast<unsigned>(g() & 0xFFFF);
+        for (const double min_t : {1.0, 0.0001}) {
+            rt::NearestHit<Real> hits[kLanes];
+            tree.closest(origins, directions, lanes, min_t, hits);
+            for (int k = 0; k < kLanes; ++k) {
+                if ((lanes >> k & 1U) == 0) continue;
+                const rt::NearestHit<Real> want = plain.closest(origins[k], directions[k], min_t);
+                differing += !(hits[k].ellipsoid == want.ellipsoid &&
+                               (!want.found() || (hits[k].t == want.t && hits[k].inside == want.inside)));
+            }
+        }
+    }
+    return differing;
+}
+
+}  // namespace
+
+TEST(bvh_shadow_bundles_match_brute_force) {
+    for (unsigned seed = 1; seed <= 8; ++seed) {
+        const int n = 70 + static_cast<int>(seed) * 40;
+        CHECK_EQ(shadow_lanes_differing(crowd<float>(seed, n), seed, 600), 0);
+        CHECK_EQ(shadow_lanes_differing(crowd<double>(seed, n), seed, 600), 0);
+        CHECK_EQ(shadow_lanes_differing(crowd<long double>(seed, n), seed, 300), 0);
+    }
+}
+
+TEST(bvh_closest_bundles_match_brute_force) {
+    for (unsigned seed = 1; seed <= 8; ++seed) {
+        const int n = 70 + static_cast<int>(seed) * 40;
+        CHECK_EQ(closest_lanes_differing(crowd<float>(seed, n), seed, 400), 0);
+        CHECK_EQ(closest_lanes_differing(crowd<double>(seed, n), seed, 400), 0);
+        CHECK_EQ(closest_lanes_differing(crowd<long double>(seed, n), seed, 200), 0);
+    }
+}
