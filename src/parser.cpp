@@ -1,85 +1,25 @@
 // Scene-file parsing. One statement per line: a keyword and a fixed number of fields,
 // all separated by spaces, tabs or CR (SPEC section 2). Reading line by line, rather
 // than as one token stream, lets a short SPHERE line be reported on its own line.
+// A large text is cut into pieces at line starts, parsed at once on the helper threads
+// and merged in file order (Piece, merge()): the same scene, and the same first mistake.
 #include "raytracer/parser.h"
 
 #include <algorithm>
-#include <charconv>
-#include <cmath>
-#include <cstdio>
-#include <cstdlib>
-#include <cstring>
-#include <filesystem>
-#include <memory>
+#include <atomic>
+#include <exception>
 #include <optional>
 #include <sstream>
+#include <utility>
 #include <vector>
 
+#include "raytracer/helper_pool.h"
 #include "raytracer/scene_error.h"
+#include "raytracer/scene_numbers.h"
 #include "raytracer/shown.h"
 
 namespace rt {
 namespace {
-
-// Field separators within a line (CR and LF end lines).
-bool is_separator(char c) { return c == ' ' || c == '\t' || c == '\v' || c == '\f'; }
-bool is_digit(char c) { return c >= '0' && c <= '9'; }
-
-// Decimal numbers only: [+-] digits [. digits] [(e|E) [+-] digits], with at least one
-// digit before or after the point. strtod alone would also take hex, "inf" and "nan".
-bool is_decimal_number(std::string_view s) {
-    std::size_t i = 0;
-    if (i < s.size() && (s[i] == '+' || s[i] == '-')) ++i;
-    std::size_t digits = 0;
-    while (i < s.size() && is_digit(s[i])) ++i, ++digits;
-    if (i < s.size() && s[i] == '.') {
-        ++i;
-        while (i < s.size() && is_digit(s[i])) ++i, ++digits;
-    }
-    if (digits == 0) return false;
-    if (i < s.size() && (s[i] == 'e' || s[i] == 'E')) {
-        ++i;
-        if (i < s.size() && (s[i] == '+' || s[i] == '-')) ++i;
-        std::size_t exponent_digits = 0;
-        while (i < s.size() && is_digit(s[i])) ++i, ++exponent_digits;
-        if (exponent_digits == 0) return false;
-    }
-    return i == s.size();
-}
-
-std::optional<double> to_double(std::string_view token) {
-    // from_chars reads exactly the decimal form (sign, digits, point, exponent) but for
-    // a leading '+', which it refuses, and "inf" and "nan", which it takes; it rounds
-    // correctly, as strtod does, and needs no copy nor locale (the parser's hottest call
-    // on large scenes). So the token is first checked to start as a number does.
-    std::string_view body = token;
-    const bool negative = !body.empty() && body[0] == '-';
-    if (!body.empty() && (body[0] == '+' || body[0] == '-')) body.remove_prefix(1);
-    if (body.empty() || !(is_digit(body[0]) || body[0] == '.')) return std::nullopt;
-    double value = 0;
-    const auto [end, error] = std::from_chars(body.data(), body.data() + body.size(), value);
-    if (error == std::errc() && end == body.data() + body.size()) return negative ? -value : value;
-    // Out of range: strtod decides, as it always did (1e999 overflows and is refused;
-    // 1e-999 is 0 and 4e-320 a denormal, both taken). The program never calls
-    // setlocale, so strtod reads '.' as the decimal point.
-    if (error != std::errc::result_out_of_range || !is_decimal_number(token)) return std::nullopt;
-    const std::string text(token);
-    value = std::strtod(text.c_str(), nullptr);
-    if (!std::isfinite(value)) return std::nullopt;
-    return value;
-}
-
-std::optional<long long> to_integer(std::string_view token) {
-    std::size_t i = (!token.empty() && token[0] == '+') ? 1 : 0;
-    if (i == token.size()) return std::nullopt;
-    long long value = 0;
-    for (; i < token.size(); ++i) {
-        if (!is_digit(token[i])) return std::nullopt;
-        // Saturate rather than overflow: anything this big is refused as too large anyway.
-        value = std::min(value * 10 + (token[i] - '0'), kMaxImagePixels + 1);
-    }
-    return value;
-}
 
 enum class Field { Name, Number, Count };
 
@@ -128,21 +68,59 @@ std::string keyword_list() {
     return text;
 }
 
+// What each byte is to split_line(): part of a token, a field separator, the end of a
+// line (CR, LF) or NUL, which never occurs in a text file. One table look-up a byte.
+enum ByteKind : unsigned char { kToken, kSeparator, kLineEnd, kNul };
+struct ByteKinds {
+    unsigned char of[256] = {};
+    constexpr ByteKinds() {
+        set(" \t\v\f", kSeparator), set("\n\r", kLineEnd);
+        of[0] = kNul;
+    }
+    constexpr void set(const char* bytes, ByteKind kind) {
+        for (; *bytes != 0; ++bytes) of[static_cast<unsigned char>(*bytes)] = kind;
+    }
+};
+constexpr ByteKinds kByteKinds;
+unsigned char kind_of(char c) { return kByteKinds.of[static_cast<unsigned char>(c)]; }
+
 // Splits the first line of text into tokens (reused from line to line: no allocation
-// per line) and returns where it ends: at its first CR or LF, or at the end. One pass
-// over the bytes; find_first_of() would look each byte up in the set with a call to
-// memchr, a quarter of the time spent reading a large scene.
+// per line) and returns where it ends: at its first CR or LF, or at the end; npos if it
+// holds a NUL byte.
 std::size_t split_line(std::string_view text, std::vector<std::string_view>& tokens) {
     tokens.clear();
     std::size_t i = 0;
     const std::size_t n = text.size();
     for (;;) {
-        while (i < n && is_separator(text[i])) ++i;
-        if (i == n || text[i] == '\n' || text[i] == '\r') return i;
+        while (i < n && kind_of(text[i]) == kSeparator) ++i;
+        if (i == n || kind_of(text[i]) == kLineEnd) return i;
+        if (kind_of(text[i]) == kNul) return std::string_view::npos;
         const std::size_t start = i;
-        while (i < n && !is_separator(text[i]) && text[i] != '\n' && text[i] != '\r') ++i;
+        while (i < n && kind_of(text[i]) == kToken) ++i;
         tokens.push_back(text.substr(start, i - start));
     }
+}
+
+// Where the next line starts after a line that ends at end: past LF, CR LF or a lone CR
+// (old Mac files), each of which ends one line.
+std::size_t next_line(std::string_view text, std::size_t end) {
+    std::size_t next = end == text.size() ? end : end + 1;
+    if (end < text.size() && text[end] == '\r' && next < text.size() && text[next] == '\n') ++next;
+    return next;
+}
+
+// A mistake: its line (0: the file as a whole) and what is wrong. A piece of the text
+// counts its lines from its own first; the merge turns it into a SceneError.
+struct Failure {
+    int line;
+    std::string what;
+};
+[[noreturn]] void fail(int line, std::string what) { throw Failure{line, std::move(what)}; }
+
+const Statement& statement_of(std::string_view keyword, int line) {
+    for (const Statement& s : statements())
+        if (keyword == s.keyword) return s;
+    fail(line, "unknown keyword " + shown(keyword) + ", expected one of " + keyword_list());
 }
 
 // The fields of one statement, converted and checked for form (not yet for meaning).
@@ -153,61 +131,24 @@ struct Fields {
     std::vector<std::string_view> raw;  // every field as written, for messages
 };
 
-class SceneParser {
+// Applies statements to a scene, checking each, and the scene once it is complete.
+class SceneBuilder {
 public:
-    explicit SceneParser(const std::string& file) : file_(file) {}
+    Scene scene;
 
-    Scene parse(std::string_view text) {
-        // At most one ellipsoid per "SPHERE" in the text: reserved, so that the list
-        // is not copied as it grows (nor its peak twice its size).
-        std::size_t spheres = 0;
-        for (std::size_t at = text.find("SPHERE"); at != std::string_view::npos;
-             at = text.find("SPHERE", at + 6))
-            ++spheres;
-        scene_.spheres.reserve(spheres);
-        // A UTF-8 byte-order mark, as some Windows editors write, is not part of the scene.
-        if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
-        int line_number = 0;
-        while (!text.empty()) {
-            ++line_number;
-            // A line ends at LF, CR LF, or a lone CR (old Mac files): each counts as one line.
-            const std::size_t end = split_line(text, tokens_);
-            // A NUL byte never occurs in a text file; say so rather than "unknown keyword".
-            // Checked line by line, so that the first mistake in the file is the one reported.
-            if (text.substr(0, end).find('\0') != std::string_view::npos)
-                fail(line_number, "a NUL byte (a binary file?), expected a text scene file");
-            statement(tokens_, line_number);
-            std::size_t next = end == text.size() ? end : end + 1;
-            if (end < text.size() && text[end] == '\r' && next < text.size() && text[next] == '\n') ++next;
-            text.remove_prefix(next);
-        }
-        check_complete();
-        return scene_;
-    }
-
-private:
-    [[noreturn]] void fail(int line, const std::string& what) const { throw SceneError(file_, line, what); }
-
-    void statement(const std::vector<std::string_view>& tokens, int line) {
-        if (tokens.empty()) return;  // blank lines are allowed anywhere
-        const Statement* found = nullptr;
-        for (const Statement& s : statements())
-            if (tokens[0] == s.keyword) found = &s;
-        if (found == nullptr)
-            fail(line, "unknown keyword " + shown(tokens[0]) + ", expected one of " + keyword_list());
-
+    void statement(const Statement& found, const std::vector<std::string_view>& tokens, int line) {
         const std::size_t given = tokens.size() - 1;
-        const std::size_t wanted = found->field_names.size();
+        const std::size_t wanted = found.field_names.size();
         if (given != wanted) {
-            fail(line, std::string(found->keyword) + " has " + std::to_string(given) + " field" +
+            fail(line, std::string(found.keyword) + " has " + std::to_string(given) + " field" +
                            (given == 1 ? "" : "s") + ", expected " + std::to_string(wanted) + ": " +
-                           usage_of(*found));
+                           usage_of(found));
         }
 
-        const std::size_t index = static_cast<std::size_t>(found - statements().data());
-        if (found->required_once) {
+        const std::size_t index = static_cast<std::size_t>(&found - statements().data());
+        if (found.required_once) {
             if (first_line_[index] != 0) {
-                fail(line, std::string("a second ") + found->keyword + " (the first is on line " +
+                fail(line, std::string("a second ") + found.keyword + " (the first is on line " +
                                std::to_string(first_line_[index]) + "), expected exactly one");
             }
             first_line_[index] = line;
@@ -219,9 +160,9 @@ private:
             const std::string_view token = tokens[i + 1];
             fields.raw.push_back(token);
             auto what = [&] {  // only for a message: most lines have none
-                return std::string(found->keyword) + " <" + found->field_names[i] + "> is " + shown(token);
+                return std::string(found.keyword) + " <" + found.field_names[i] + "> is " + shown(token);
             };
-            switch (found->field_kinds[i]) {
+            switch (found.field_kinds[i]) {
                 case Field::Name:
                     fields.names.push_back(token);
                     break;
@@ -239,22 +180,22 @@ private:
                     break;
             }
         }
-        apply(found->keyword, fields, line);
+        apply(found.keyword, fields, line);
     }
 
     void apply(std::string_view keyword, const Fields& f, int line) {
         const std::vector<double>& v = f.numbers;
         if (keyword == "NEAR") {
             if (!(v[0] > 0)) fail(line, "NEAR is " + format(v[0]) + ", expected a distance greater than 0");
-            scene_.near_plane = v[0];
+            scene.near_plane = v[0];
         } else if (keyword == "LEFT") {
-            scene_.left = v[0];
+            scene.left = v[0];
         } else if (keyword == "RIGHT") {
-            scene_.right = v[0];
+            scene.right = v[0];
         } else if (keyword == "BOTTOM") {
-            scene_.bottom = v[0];
+            scene.bottom = v[0];
         } else if (keyword == "TOP") {
-            scene_.top = v[0];
+            scene.top = v[0];
         } else if (keyword == "RES") {
             const long long columns = f.counts[0], rows = f.counts[1];
             if (columns > kMaxImageSide || rows > kMaxImageSide || columns * rows > kMaxImagePixels) {
@@ -262,8 +203,8 @@ private:
                                " is too large, expected at most " + std::to_string(kMaxImageSide) +
                                " a side and " + std::to_string(kMaxImagePixels) + " pixels");
             }
-            scene_.columns = static_cast<int>(columns);
-            scene_.rows = static_cast<int>(rows);
+            scene.columns = static_cast<int>(columns);
+            scene.rows = static_cast<int>(rows);
         } else if (keyword == "SPHERE") {
             SphereSpec s;
             s.name = std::string(f.names[0]);
@@ -282,16 +223,16 @@ private:
                                    shown(f.raw[4 + axis]) + ", expected a non-zero scale");
                 }
             }
-            scene_.spheres.push_back(std::move(s));
+            scene.spheres.push_back(std::move(s));
         } else if (keyword == "LIGHT") {
-            scene_.lights.push_back({std::string(f.names[0]), {v[0], v[1], v[2]}, {v[3], v[4], v[5]}, line});
+            scene.lights.push_back({std::string(f.names[0]), {v[0], v[1], v[2]}, {v[3], v[4], v[5]}, line});
         } else if (keyword == "BACK") {
-            scene_.background = {v[0], v[1], v[2]};
+            scene.background = {v[0], v[1], v[2]};
         } else if (keyword == "AMBIENT") {
-            scene_.ambient = {v[0], v[1], v[2]};
+            scene.ambient = {v[0], v[1], v[2]};
         } else if (keyword == "OUTPUT") {
-            scene_.output = std::string(f.names[0]);
-            scene_.output_line = line;
+            scene.output = std::string(f.names[0]);
+            scene.output_line = line;
         }
     }
 
@@ -315,76 +256,149 @@ private:
             }
         }
         // Each pair is reported on the line of whichever of the two came later.
-        if (!(scene_.left < scene_.right)) {
-            fail(std::max(line_of("LEFT"), line_of("RIGHT")), "LEFT " + format(scene_.left) + " and RIGHT " +
-                                                                  format(scene_.right) +
+        if (!(scene.left < scene.right)) {
+            fail(std::max(line_of("LEFT"), line_of("RIGHT")), "LEFT " + format(scene.left) + " and RIGHT " +
+                                                                  format(scene.right) +
                                                                   ", expected LEFT < RIGHT");
         }
-        if (!(scene_.bottom < scene_.top)) {
-            fail(std::max(line_of("BOTTOM"), line_of("TOP")), "BOTTOM " + format(scene_.bottom) +
-                                                                  " and TOP " + format(scene_.top) +
+        if (!(scene.bottom < scene.top)) {
+            fail(std::max(line_of("BOTTOM"), line_of("TOP")), "BOTTOM " + format(scene.bottom) + " and TOP " +
+                                                                  format(scene.top) +
                                                                   ", expected BOTTOM < TOP");
         }
     }
 
-    std::string file_;
-    Scene scene_;
-    std::vector<std::string_view> tokens_;                                 // of the current line
+private:
     Fields fields_;                                                        // of the current line
     std::vector<int> first_line_ = std::vector<int>(statements().size());  // per kind: its first line
 };
 
-}  // namespace
+// A piece of the text, from a line's start to the next piece's, parsed on its own: its
+// spheres and lights. The statements that must occur once are kept for the merge, which
+// alone knows whether an earlier piece had one: so that a piece stops at the same
+// first mistake as the whole file would. Nothing else carries from line to line.
+struct Piece {
+    std::string_view text;
+    // Its list of spheres is reserved for one per "SPHERE" in this text: the first
+    // piece's for the whole text, as the merge appends the other pieces' to it.
+    std::string_view reserve_for;
+    SceneBuilder spheres_and_lights;
+    std::vector<std::pair<int, std::string_view>> once;  // each line and the text from it on
+    int lines = 0;
+    std::optional<Failure> failure;  // the piece's first mistake: it stops there
+    std::exception_ptr exception;    // anything else (out of memory), rethrown in the merge
 
-Scene parse_scene(std::string_view text, const std::string& file_name) {
-    return SceneParser(file_name).parse(text);
-}
-
-Scene load_scene(const std::string& path) {
-    // C stdio rather than an ifstream, and the file system asked only when the file
-    // cannot be read: an ifstream's first use sets up locale facets, and the two status
-    // queries cost system calls; together 0.1 ms of a 2 ms run (docs/speed.md).
-    auto cannot_read = [&path](bool opened, int error) {
-        std::error_code ec;
-        // Where a folder opens (Linux), reading it fails.
-        if (std::filesystem::is_directory(path, ec))
-            return SceneError(path, 0, "is a directory, expected a scene file");
-        if (!opened && error == ENOENT) return SceneError(path, 0, "does not exist, expected a scene file");
-        if (!opened && error == EACCES)
-            return SceneError(
-                path, 0, "cannot be opened for reading: permission denied, expected a readable scene file");
-        if (!opened && !std::filesystem::exists(path, ec))
-            return SceneError(path, 0, "does not exist, expected a scene file");
-        const std::string cause = error != 0 ? std::string(": ") + std::strerror(error) : std::string();
-        return opened
-                   ? SceneError(path, 0, "could not be read" + cause + ", expected a readable scene file")
-                   : SceneError(path, 0,
-                                "cannot be opened for reading" + cause + ", expected a readable scene file");
-    };
-    const std::unique_ptr<std::FILE, int (*)(std::FILE*)> in(std::fopen(path.c_str(), "rb"), &std::fclose);
-    if (!in) throw cannot_read(false, errno);
-    std::string text;
-    // Reserved at the file's size where the system tells it (one allocation, not a
-    // doubling string's: a 26 MB scene then peaks at 26 MB, not 48).
-    std::error_code ec;
-    const std::uintmax_t size = std::filesystem::file_size(path, ec);
-    if (!ec && size <= kMaxSceneFileBytes) text.reserve(static_cast<std::size_t>(size));
-    char buffer[1 << 14];
-    for (std::size_t got; (got = std::fread(buffer, 1, sizeof buffer, in.get())) > 0;) {
-        text.append(buffer, got);
-        if (text.size() > kMaxSceneFileBytes) {
-            throw SceneError(
-                path, 0,
-                "is larger than " + std::to_string(kMaxSceneFileBytes >> 20) + " MiB, expected a scene file");
+    void parse() {
+        try {
+            // At most one ellipsoid per "SPHERE": reserved, so that the list is not
+            // copied as it grows (nor its peak twice its size).
+            std::size_t spheres = 0;
+            for (std::size_t at = reserve_for.find("SPHERE"); at != std::string_view::npos;
+                 at = reserve_for.find("SPHERE", at + 6))
+                ++spheres;
+            spheres_and_lights.scene.spheres.reserve(spheres);
+            std::vector<std::string_view> tokens;  // of the current line
+            for (std::string_view rest = text; !rest.empty();) {
+                ++lines;
+                const std::size_t end = split_line(rest, tokens);
+                // A NUL byte never occurs in a text file; say so rather than "unknown keyword".
+                if (end == std::string_view::npos)
+                    fail(lines, "a NUL byte (a binary file?), expected a text scene file");
+                if (!tokens.empty()) {  // blank lines are allowed anywhere
+                    const Statement& s = statement_of(tokens[0], lines);
+                    if (s.required_once)
+                        once.emplace_back(lines, rest);
+                    else
+                        spheres_and_lights.statement(s, tokens, lines);
+                }
+                rest.remove_prefix(next_line(rest, end));
+            }
+        } catch (Failure& f) {
+            failure = std::move(f);
+        } catch (...) {
+            exception = std::current_exception();
         }
     }
-    if (std::ferror(in.get()) != 0) throw cannot_read(true, errno);
-    if (text.find_first_not_of(" \t\r\n\v\f") == std::string::npos)
-        throw SceneError(path, 0, "is empty, expected a scene file");
-    // Windows editors may save UTF-16, whose ASCII letters come with NUL bytes between.
-    if (text.rfind("\xFF\xFE", 0) == 0 || text.rfind("\xFE\xFF", 0) == 0)
-        throw SceneError(path, 0, "is UTF-16 text, expected ASCII or UTF-8 text");
-    return parse_scene(text, path);
+};
+
+// The text cut for `threads` threads, each piece ending with the first LF at or after
+// its bound (a CR LF is never cut): a first piece of 1/threads of the text, which this
+// thread takes first, then pieces of a quarter of that (at least kParsePieceBytes), taken
+// by whichever thread is free: a helper that starts late or runs slowly (its core
+// shared) then holds up the merge by one small piece at most, not by half the text.
+std::vector<Piece> cut(std::string_view text, unsigned threads) {
+    const std::size_t share = std::max(kParsePieceBytes, text.size() / std::max(threads, 1U));
+    const std::size_t step = std::max(kParsePieceBytes, share / 4);
+    std::vector<Piece> pieces;
+    std::size_t start = 0, bound = threads > 1 ? share : text.size();
+    do {  // at least one piece, empty for an empty text
+        std::size_t end =
+            bound >= text.size() ? std::string_view::npos : text.find('\n', std::max(start, bound));
+        end = end == std::string_view::npos ? text.size() : end + 1;
+        Piece& piece = pieces.emplace_back();
+        piece.text = text.substr(start, end - start);
+        piece.reserve_for = start == 0 ? text : piece.text;
+        start = end, bound += step;
+    } while (start < text.size());
+    return pieces;
+}
+
+// The pieces in file order into one scene: each piece's statements that must occur once,
+// which all came before its first mistake, then that mistake, then its spheres and
+// lights, their lines counted on from the pieces before (the first piece's lists taken
+// as they are: no copy).
+Scene merge(std::vector<Piece>& pieces) {
+    SceneBuilder all;
+    int offset = 0;
+    std::vector<std::string_view> tokens;
+    for (Piece& p : pieces) {
+        for (const auto& [line, text] : p.once) {
+            split_line(text, tokens);
+            all.statement(statement_of(tokens[0], offset + line), tokens, offset + line);
+        }
+        if (p.failure) fail(offset + p.failure->line, p.failure->what);
+        if (p.exception) std::rethrow_exception(p.exception);
+        Scene& s = p.spheres_and_lights.scene;
+        if (&p == &pieces.front()) {
+            all.scene.spheres = std::move(s.spheres), all.scene.lights = std::move(s.lights);
+        } else {
+            for (SphereSpec& sphere : s.spheres)
+                sphere.line += offset, all.scene.spheres.push_back(std::move(sphere));
+            for (LightSpec& light : s.lights)
+                light.line += offset, all.scene.lights.push_back(std::move(light));
+            std::vector<SphereSpec>().swap(s.spheres);  // not needed past this: a lower peak
+        }
+        offset += p.lines;
+    }
+    all.check_complete();
+    return std::move(all.scene);
+}
+
+}  // namespace
+
+Scene parse_scene(std::string_view text, const std::string& file_name, unsigned threads) {
+    // A UTF-8 byte-order mark, as some Windows editors write, is not part of the scene.
+    if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
+    std::vector<Piece> parts = cut(text, threads);
+    // The first piece on this thread, then every thread takes the next piece left.
+    std::atomic<std::size_t> next{1};
+    auto parse_pieces = [&] {
+        for (std::size_t k; (k = next++) < parts.size();) parts[k].parse();
+    };
+    using ParsePieces = decltype(parse_pieces);
+    HelperPool::Job helpers;
+    if (parts.size() > 1)
+        helpers.start(
+            std::min(threads, static_cast<unsigned>(parts.size())) - 1,
+            [](void* context, unsigned) { (*static_cast<ParsePieces*>(context))(); }, &parse_pieces);
+    parts[0].parse();
+    parse_pieces();
+    helpers.finish();
+    try {
+        return merge(parts);
+    } catch (const Failure& f) {
+        throw SceneError(file_name, f.line, f.what);
+    }
 }
 
 }  // namespace rt

@@ -5,6 +5,8 @@
 #include <cstring>
 #include <random>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "check.h"
 #include "raytracer/parser.h"
@@ -196,6 +198,8 @@ TEST(reports_bad_resolutions) {
 }
 
 TEST(reports_missing_and_repeated_keywords) {
+    CHECK_EQ(error_of(""), std::string("scene.txt: error: no NEAR line, expected exactly one: NEAR <n>"));
+    CHECK_EQ(error_of("\xEF\xBB\xBF"), error_of(""));
     CHECK(contains(error_of(with_line(11, "")), "scene.txt: error: no OUTPUT line, expected exactly one"));
     CHECK(contains(error_of(with_line(11, "NEAR 2")),
                    "scene.txt:11: error: a second NEAR (the first is on line 1)"));
@@ -218,4 +222,113 @@ TEST(values_outside_0_1_are_kept_as_given) {
     const rt::Scene s = rt::parse_scene(with_line(8, "LIGHT l1 0 0 0 2.5 -1 7"), "x");
     CHECK_EQ(s.lights[0].intensity.x, 2.5);
     CHECK_EQ(s.lights[0].intensity.y, -1.0);
+}
+
+namespace {
+
+// A text large enough to be cut into pieces (parser.h): kMinimal's lines, then spheres
+// and lights, as lines to edit; joined with `end` between lines.
+std::vector<std::string> many_lines() {
+    std::vector<std::string> lines;
+    for (std::size_t at = 0, next; (next = std::string(kMinimal).find('\n', at)) != std::string::npos;
+         at = next + 1)
+        lines.push_back(std::string(kMinimal).substr(at, next - at));
+    for (int i = 0; lines.size() < 30000; ++i) {
+        lines.push_back("SPHERE s" + std::to_string(i) + " " + std::to_string(i % 17) +
+                        ".25 -1.5e-3 -10 0.5 2 1.125 0.5 0 1 1 0.9 0.25 0.125 50");
+        if (i % 1000 == 0) lines.push_back("LIGHT l" + std::to_string(i) + " 0 1e2 -3 0.9 0.5 0.25");
+        if (i % 3000 == 0) lines.emplace_back();
+    }
+    return lines;
+}
+
+std::string joined(const std::vector<std::string>& lines, const char* end = "\n") {
+    std::string text;
+    for (const std::string& line : lines) text += line + end;
+    return text;
+}
+
+// The message parsing text on `threads` threads throws, or "" if it parses.
+std::string error_in(const std::string& text, unsigned threads) {
+    try {
+        rt::parse_scene(text, "big.txt", threads);
+    } catch (const rt::SceneError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+}  // namespace
+
+TEST(pieces_give_the_scene_of_one_piece) {
+    std::vector<std::string> lines = many_lines();
+    std::swap(lines[10], lines.back());  // OUTPUT in the last piece, a sphere line in the first
+    for (const char* end : {"\n", "\r\n", "\r"}) {
+        const std::string text = joined(lines, end);
+        CHECK(text.size() >= 3 * rt::kParsePieceBytes);
+        const rt::Scene one = rt::parse_scene(text, "big.txt", 1);
+        CHECK_EQ(one.output_line, static_cast<int>(lines.size()));
+        for (unsigned threads : {2U, 3U, 16U}) {  // 6, 7 and 9 pieces
+            const rt::Scene s = rt::parse_scene(text, "big.txt", threads);
+            CHECK_EQ(s.spheres.size(), one.spheres.size());
+            CHECK_EQ(s.lights.size(), one.lights.size());
+            for (std::size_t i = 0; i < s.spheres.size() && i < one.spheres.size(); ++i) {
+                const rt::SphereSpec &a = s.spheres[i], &b = one.spheres[i];
+                CHECK(a.name == b.name && a.line == b.line && a.centre.x == b.centre.x &&
+                      a.centre.y == b.centre.y && a.scale.z == b.scale.z && a.colour.y == b.colour.y &&
+                      a.kr == b.kr && a.shininess == b.shininess);
+            }
+            for (std::size_t i = 0; i < s.lights.size() && i < one.lights.size(); ++i)
+                CHECK(s.lights[i].name == one.lights[i].name && s.lights[i].line == one.lights[i].line);
+            CHECK(s.output == one.output && s.output_line == one.output_line && s.columns == one.columns &&
+                  s.near_plane == one.near_plane && s.ambient.x == one.ambient.x);
+        }
+    }
+}
+
+// The first mistake in file order, on its line, whatever the pieces: in the second
+// half, in both halves, and a second once-only statement whose first is in another
+// piece (where a line both repeats NEAR and holds a bad number, the repeat is reported,
+// as in one piece; a wrong field count is found first).
+TEST(pieces_report_the_first_mistake_of_one_piece) {
+    const std::vector<std::string> base = many_lines();
+    const std::size_t late = base.size() * 3 / 4, early = base.size() / 4;
+    const std::string bad_sphere = "SPHERE bad 0 0 -10 1 0 1 1 1 1 1 1 1 0 5";
+    struct Case {
+        std::vector<std::pair<std::size_t, std::string>> edits;
+        std::string expected;  // the message of one piece, in part
+    };
+    const std::string late_line = ":" + std::to_string(late + 1) + ": error: ";
+    const std::vector<Case> cases = {
+        {{{late, bad_sphere}}, late_line + "SPHERE 'bad' <scl y> is '0'"},
+        {{{late, bad_sphere}, {early, "LAMP"}}, ":" + std::to_string(early + 1) + ": error: unknown keyword"},
+        {{{late, "NEAR 2"}}, late_line + "a second NEAR (the first is on line 1)"},
+        {{{late, "NEAR x"}}, late_line + "a second NEAR"},
+        {{{late, "NEAR"}}, late_line + "NEAR has 0 fields"},
+        {{{late, "RES 2 2"}, {late + 1, "RES 3 3"}}, late_line + "a second RES (the first is on line 6)"},
+        {{{late, bad_sphere}, {late + 1, "NEAR 2"}}, late_line + "SPHERE 'bad'"},
+        {{{late, "NEAR 2"}, {late + 1, bad_sphere}}, late_line + "a second NEAR"},
+        {{{late, std::string("SPHERE \0", 8)}}, late_line + "a NUL byte"},
+        {{{0, ""}, {late, "NEAR 0"}}, late_line + "NEAR is 0"},
+        {{{2, ""}, {late, "RIGHT -1"}}, late_line + "LEFT -1 and RIGHT -1"},
+        {{{10, ""}}, "big.txt: error: no OUTPUT line"},
+        {{{0, "NEAR 0"}, {late, bad_sphere}}, "big.txt:1: error: NEAR is 0"},
+        {{{early, bad_sphere}, {late, "NEAR 2"}}, ":" + std::to_string(early + 1) + ": error: SPHERE 'bad'"},
+        {{{0, ""}, {late, "NEAR 1"}, {late + 1, "NEAR 2"}},
+         ":" + std::to_string(late + 2) + ": error: a second NEAR (the first is on line " +
+             std::to_string(late + 1) + ")"},
+    };
+    for (const Case& c : cases) {
+        std::vector<std::string> lines = base;
+        for (const auto& [line, text] : c.edits) lines[line] = text;
+        const std::string text = joined(lines);
+        const std::string one = error_in(text, 1);
+        if (!contains(one, c.expected)) std::cerr << "expected '" << c.expected << "', got: " << one << "\n";
+        CHECK(contains(one, c.expected));
+        for (unsigned threads : {2U, 3U, 7U}) {
+            const std::string got = error_in(text, threads);
+            if (got != one) std::cerr << threads << " threads: " << got << "\n    one piece: " << one << "\n";
+            CHECK_EQ(got, one);
+        }
+    }
 }

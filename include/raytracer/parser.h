@@ -20,11 +20,16 @@ inline constexpr int kMaxImageSide = 100'000;
 // one such as /dev/zero) and is refused after reading this much, not read to the end.
 inline constexpr std::size_t kMaxSceneFileBytes = std::size_t{64} << 20;
 
-// Parses the text of a scene file; file_name is used only in messages.
-Scene parse_scene(std::string_view text, const std::string& file_name);
+// Parses the text of a scene file; file_name is used only in messages. A text of over
+// kParsePieceBytes is cut into pieces at line starts, parsed at once on up to `threads`
+// threads (this one and helpers, helper_pool.h) and merged in file order: the same
+// scene and the same first mistake as on one thread. A smaller piece costs more to
+// start than it saves.
+inline constexpr std::size_t kParsePieceBytes = std::size_t{256} << 10;
+Scene parse_scene(std::string_view text, const std::string& file_name, unsigned threads = 1);
 
-// Reads and parses a scene file. Refuses what is not a scene file at all (missing,
-// unreadable, a directory, empty, binary) with a SceneError that has no line.
+// Reads and parses a scene file, on as many threads as there are cores. Refuses what is not a scene file at
+// all (missing, unreadable, a directory, empty, binary) with a SceneError that has no line.
 Scene load_scene(const std::string& path);
 
 }  // namespace rt
