@@ -47,6 +47,7 @@
 #include "raytracer/bvh_build.h"
 #include "raytracer/compiler.h"
 #include "raytracer/ellipsoid.h"
+#include "raytracer/intersect_lanes.h"
 #include "raytracer/scene_precision.h"
 #include "raytracer/spec_rules.h"
 #include "raytracer/vec3.h"
@@ -109,15 +110,20 @@ public:
             rays.set(lowest_bit(m), origins[lowest_bit(m)], directions[lowest_bit(m)],
                      std::numeric_limits<C>::infinity());
         traverse<true, true>(ray, std::numeric_limits<C>::infinity(), [&](Child leaf, C& t1) {
-            for (std::uint32_t i = leaf.first; i < leaf.first + leaf.count; ++i)
-                for (unsigned m = lanes & rays.meeting(item_box(items_[i])); m != 0; m &= m - 1) {
+            for (std::uint32_t i = leaf.first; i < leaf.first + leaf.count; ++i) {
+                unsigned m = lanes & rays.meeting(item_box(items_[i]));
+                if (m == 0) continue;
+                Real hit[N], near[N], far[N];
+                rays.roots(items_[i], hit, near, far);
+                for (; m != 0; m &= m - 1) {
                     const int k = lowest_bit(m);
                     Real t;
                     bool inside;
-                    if (visible_root(intersect(items_[i], origins[k], directions[k]), beyond, t, inside) &&
+                    if (visible_root(Roots<Real>{hit[k] != 0, near[k], far[k]}, beyond, t, inside) &&
                         hits[k].replaced_by(t, index_[i]))
                         hits[k] = {index_[i], t, inside}, rays.t1[k] = C(t);
                 }
+            }
             C farthest = 0;  // no box entered beyond every lane's nearest root holds a nearer one
             for (unsigned m = lanes; m != 0; m &= m - 1)
                 farthest = std::max(farthest, rays.t1[lowest_bit(m)]);
@@ -181,9 +187,14 @@ public:
         traverse<false, true>(ray, C(1), [&](Child leaf, C&) {
             for (std::uint32_t i = leaf.first; i < leaf.first + leaf.count; ++i) {
                 if (i == tried) continue;
-                for (unsigned m = open & rays.meeting(item_box(items_[i])); m != 0; m &= m - 1) {
+                unsigned m = open & rays.meeting(item_box(items_[i]));
+                if (m == 0) continue;
+                Real hit[N], near[N], far[N];
+                rays.roots(items_[i], hit, near, far);
+                for (; m != 0; m &= m - 1) {
                     const int k = lowest_bit(m);
-                    if (blocks_segment(items_[i], points[k], to_light[k])) blocked |= 1U << k, blocker = i;
+                    if (blocks_segment(Roots<Real>{hit[k] != 0, near[k], far[k]}))
+                        blocked |= 1U << k, blocker = i;
                 }
                 open &= ~blocked;
                 if (open == 0) return true;
@@ -286,15 +297,22 @@ private:
     template <int N>
     struct LaneRays {
         C o[3][N] = {}, inv[3][N] = {}, t1[N] = {};
-        unsigned unculled = 0;  // lanes always met: a direction without a finite inverse
+        unsigned unculled = 0;                   // lanes always met: a direction without a finite inverse
+        Real from[3][N] = {}, along[3][N] = {};  // the rays as given, for intersect_lanes()
 
         void set(int k, const V& origin, const V& direction, C end) {
             const C d[3] = {C(direction.x), C(direction.y), C(direction.z)};
             o[0][k] = C(origin.x), o[1][k] = C(origin.y), o[2][k] = C(origin.z), t1[k] = end;
+            from[0][k] = origin.x, from[1][k] = origin.y, from[2][k] = origin.z;
+            along[0][k] = direction.x, along[1][k] = direction.y, along[2][k] = direction.z;
             for (int a = 0; a < 3; ++a) {
                 inv[a][k] = 1 / d[a];
                 if (d[a] != 0 && !(std::abs(inv[a][k]) <= std::numeric_limits<C>::max())) unculled |= 1U << k;
             }
+        }
+        // Every lane's roots with e, in one vector loop: intersect()'s, bit for bit.
+        void roots(const Ellipsoid<Real>& e, Real (&hit)[N], Real (&near)[N], Real (&far)[N]) const {
+            intersect_lanes<N>(e, from[0], from[1], from[2], along[0], along[1], along[2], hit, near, far);
         }
         // The lanes whose guarded ray may meet the box, all lanes in one vector loop.
         unsigned meeting(const BuildBox<C>& box) const {

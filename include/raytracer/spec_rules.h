@@ -50,11 +50,14 @@ bool visible_root(const Roots<Real>& r, Real beyond, Real& t, bool& inside) {
 // of exactly 1 (unit_sphere_roots.h). So every precision decides a light on a surface
 // as exact arithmetic does.
 template <typename Real>
-bool blocks_segment(const Ellipsoid<Real>& e, const Vec3<Real>& point, const Vec3<Real>& to_light) {
+bool blocks_segment(const Roots<Real>& r) {
     const Real min_t = visible_beyond(Real(kShadowRayMinT));
     const Real max_t = Real(1) - Real(8) * scene_epsilon<Real>();
-    const Roots<Real> r = intersect(e, point, to_light);
     return r.hit && ((r.near > min_t && r.near < max_t) || (r.far > min_t && r.far < max_t));
+}
+template <typename Real>
+bool blocks_segment(const Ellipsoid<Real>& e, const Vec3<Real>& point, const Vec3<Real>& to_light) {
+    return blocks_segment(intersect(e, point, to_light));
 }
 
 // Whether the specular term Ks Ip (R.V)^n of an ellipsoid is exactly zero for every
