@@ -34,7 +34,7 @@ public:
             bool inside;
             if (visible_root(intersect(all[i], origin, direction), beyond, t, inside) &&
                 best.replaced_by(t, i))
-                best = {i, t, inside};
+                best = {t, i, inside};
         }
         return best;
     }

@@ -76,7 +76,7 @@ public:
                 bool inside;
                 if (visible_root(intersect(items_[k], origin, direction), beyond, t, inside) &&
                     best.replaced_by(t, index_[k])) {
-                    best = {index_[k], t, inside};
+                    best = {t, index_[k], inside};
                     t1 = C(t);  // a box entered beyond it cannot hold a nearer root
                 }
             }
@@ -121,7 +121,7 @@ public:
                     bool inside;
                     if (visible_root(Roots<Real>{hit[k] != 0, near[k], far[k]}, beyond, t, inside) &&
                         hits[k].replaced_by(t, index_[i]))
-                        hits[k] = {index_[i], t, inside}, rays.t1[k] = C(t);
+                        hits[k] = {t, index_[i], inside}, rays.t1[k] = C(t);
                 }
             }
             C farthest = 0;  // no box entered beyond every lane's nearest root holds a nearer one

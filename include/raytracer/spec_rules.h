@@ -76,8 +76,8 @@ inline constexpr std::uint32_t kNoBlocker = 0xFFFFFFFFU;
 template <typename Real>
 struct NearestHit {
     static constexpr std::uint32_t kNone = 0xFFFFFFFFU;
-    std::uint32_t ellipsoid = kNone;
     Real t = 0;
+    std::uint32_t ellipsoid = kNone;
     bool inside = false;  // the far root was taken: the ray sees the inside
 
     bool found() const { return ellipsoid != kNone; }
