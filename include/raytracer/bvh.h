@@ -111,11 +111,8 @@ public:
                      std::numeric_limits<C>::infinity());
         traverse<true, true>(ray, std::numeric_limits<C>::infinity(), [&](Child leaf, C& t1) {
             for (std::uint32_t i = leaf.first; i < leaf.first + leaf.count; ++i) {
-                unsigned m = lanes & rays.meeting(item_box(items_[i]));
-                if (m == 0) continue;
                 Real hit[N], near[N], far[N];
-                rays.roots(items_[i], hit, near, far);
-                for (; m != 0; m &= m - 1) {
+                for (unsigned m = rays.roots(items_[i], lanes, hit, near, far); m != 0; m &= m - 1) {
                     const int k = lowest_bit(m);
                     Real t;
                     bool inside;
@@ -187,11 +184,8 @@ public:
         traverse<false, true>(ray, C(1), [&](Child leaf, C&) {
             for (std::uint32_t i = leaf.first; i < leaf.first + leaf.count; ++i) {
                 if (i == tried) continue;
-                unsigned m = open & rays.meeting(item_box(items_[i]));
-                if (m == 0) continue;
                 Real hit[N], near[N], far[N];
-                rays.roots(items_[i], hit, near, far);
-                for (; m != 0; m &= m - 1) {
+                for (unsigned m = rays.roots(items_[i], open, hit, near, far); m != 0; m &= m - 1) {
                     const int k = lowest_bit(m);
                     if (blocks_segment(Roots<Real>{hit[k] != 0, near[k], far[k]}))
                         blocked |= 1U << k, blocker = i;
@@ -310,9 +304,15 @@ private:
                 if (d[a] != 0 && !(std::abs(inv[a][k]) <= std::numeric_limits<C>::max())) unculled |= 1U << k;
             }
         }
-        // Every lane's roots with e, in one vector loop: intersect()'s, bit for bit.
-        void roots(const Ellipsoid<Real>& e, Real (&hit)[N], Real (&near)[N], Real (&far)[N]) const {
-            intersect_lanes<N>(e, from[0], from[1], from[2], along[0], along[1], along[2], hit, near, far);
+        // Which of lanes may meet e's box; where some do, every lane's roots with e, in
+        // one vector loop (intersect()'s, bit for bit).
+        unsigned roots(const Ellipsoid<Real>& e, unsigned lanes, Real (&hit)[N], Real (&near)[N],
+                       Real (&far)[N]) const {
+            const unsigned met = lanes & meeting(item_box(e));
+            if (met != 0)
+                intersect_lanes<N>(e, from[0], from[1], from[2], along[0], along[1], along[2], hit, near,
+                                   far);
+            return met;
         }
         // The lanes whose guarded ray may meet the box, all lanes in one vector loop.
         unsigned meeting(const BuildBox<C>& box) const {
