@@ -86,7 +86,8 @@ int shadow_lanes_differing(const Crowd<Real>& c, unsigned seed, int bundles) {
         for (int k = 0; k < kLanes; ++k) {
             if ((lanes >> k & 1U) == 0) continue;
             std::uint32_t plain_hint = rt::kNoBlocker;
-            differing += plain.occluded(points[k], light - points[k], plain_hint) != ((blocked >> k & 1U) != 0);
+            differing +=
+                plain.occluded(points[k], light - points[k], plain_hint) != ((blocked >> k & 1U) != 0);
         }
     }
     return differing;
@@ -105,9 +106,10 @@ int closest_lanes_differing(const Crowd<Real>& c, unsigned seed, int bundles) {
     for (int b = 0; b < bundles; ++b) {
         const unsigned kind = g() % 3;
         const rt::Ellipsoid<Real>& from = c.all[g() % c.all.size()];
-        const V origin = kind == 0   ? V{}
-                         : kind == 1 ? on_surface(from, V{Real(uniform(g, -1, 1)), Real(1), Real(0.5)})
-                                     : V{Real(uniform(g, -6, 6)), Real(uniform(g, -6, 6)), Real(uniform(g, -6, 6))};
+        const V origin = kind == 0 ? V{}
+                         : kind == 1
+                             ? on_surface(from, V{Real(uniform(g, -1, 1)), Real(1), Real(0.5)})
+                             : V{Real(uniform(g, -6, 6)), Real(uniform(g, -6, 6)), Real(uniform(g, -6, 6))};
         const V aim = c.all[g() % c.all.size()].centre - origin;
         const double spread = g() % 2 ? 0.02 : 0.5;
         V origins[kLanes], directions[kLanes];
