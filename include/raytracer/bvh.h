@@ -149,17 +149,13 @@ public:
     unsigned occluded(const V (&points)[N], const V& light, unsigned lanes, std::uint32_t& blocker) const {
         V to_light[N];
         for (unsigned m = lanes; m != 0; m &= m - 1) to_light[lowest_bit(m)] = light - points[lowest_bit(m)];
-        unsigned blocked = 0;
-        const std::uint32_t tried = blocker;
-        if (blocker < items_.size())
-            for (unsigned m = lanes; m != 0; m &= m - 1)
-                if (blocks_segment(items_[blocker], points[lowest_bit(m)], to_light[lowest_bit(m)]))
-                    blocked |= 1U << lowest_bit(m);
-        unsigned open = lanes & ~blocked;
-        if (open == 0 || items_.empty()) return blocked;
+        if (lanes == 0 || (lanes & (lanes - 1)) == 0) {  // one ray
+            const int k = lanes == 0 ? 0 : lowest_bit(lanes);
+            return lanes != 0 && occluded(points[k], to_light[k], blocker) ? lanes : 0U;
+        }
         C o_lo[3], o_hi[3], d_lo[3], d_hi[3];
         for (int a = 0; a < 3; ++a) o_lo[a] = std::numeric_limits<C>::infinity(), o_hi[a] = -o_lo[a];
-        for (unsigned m = open; m != 0; m &= m - 1) {
+        for (unsigned m = lanes; m != 0; m &= m - 1) {
             const V& p = points[lowest_bit(m)];
             const C o[3] = {C(p.x), C(p.y), C(p.z)};
             for (int a = 0; a < 3; ++a) o_lo[a] = std::min(o_lo[a], o[a]), o_hi[a] = std::max(o_hi[a], o[a]);
@@ -170,26 +166,35 @@ public:
                             (std::abs(to[a]) + std::max(std::abs(o_lo[a]), std::abs(o_hi[a])));
             d_lo[a] = (to[a] - o_lo[a]) - slack, d_hi[a] = (to[a] - o_hi[a]) + slack;
         }
+        unsigned blocked = 0;
         SlabRay ray;
-        if ((open & (open - 1)) == 0 || !slab_ray(o_lo, o_hi, d_lo, d_hi, ray) || !guarded(o_lo, o_hi)) {
-            for (unsigned m = open; m != 0; m &= m - 1)  // one ray, or a bundle beyond the fast case
-                if (blocked_past(points[lowest_bit(m)], to_light[lowest_bit(m)], tried, blocker))
+        if (items_.empty() || !slab_ray(o_lo, o_hi, d_lo, d_hi, ray) || !guarded(o_lo, o_hi)) {
+            for (unsigned m = lanes; m != 0; m &= m - 1)  // beyond the fast case: ray by ray
+                if (occluded(points[lowest_bit(m)], to_light[lowest_bit(m)], blocker))
                     blocked |= 1U << lowest_bit(m);
             return blocked;
         }
-        // In a leaf, each lane's own ray is tried against each ellipsoid's box first.
+        // In a leaf, each lane's own ray is tried against each ellipsoid's box first; the
+        // hint (the ellipsoid that blocked this light last) for all lanes at once first.
         LaneRays<N> rays;
-        for (unsigned m = open; m != 0; m &= m - 1)
+        for (unsigned m = lanes; m != 0; m &= m - 1)
             rays.set(lowest_bit(m), points[lowest_bit(m)], to_light[lowest_bit(m)], 1);
+        const std::uint32_t tried = blocker;
+        auto try_ellipsoid = [&](std::uint32_t i, unsigned open) {
+            Real hit[N], near[N], far[N];
+            for (unsigned m = rays.roots(items_[i], open, hit, near, far); m != 0; m &= m - 1) {
+                const int k = lowest_bit(m);
+                if (blocks_segment(Roots<Real>{hit[k] != 0, near[k], far[k]}))
+                    blocked |= 1U << k, blocker = i;
+            }
+        };
+        if (tried < items_.size()) try_ellipsoid(tried, lanes);
+        unsigned open = lanes & ~blocked;
+        if (open == 0) return blocked;
         traverse<false, true>(ray, C(1), [&](Child leaf, C&) {
             for (std::uint32_t i = leaf.first; i < leaf.first + leaf.count; ++i) {
                 if (i == tried) continue;
-                Real hit[N], near[N], far[N];
-                for (unsigned m = rays.roots(items_[i], open, hit, near, far); m != 0; m &= m - 1) {
-                    const int k = lowest_bit(m);
-                    if (blocks_segment(Roots<Real>{hit[k] != 0, near[k], far[k]}))
-                        blocked |= 1U << k, blocker = i;
-                }
+                try_ellipsoid(i, open);
                 open &= ~blocked;
                 if (open == 0) return true;
             }
@@ -405,13 +410,28 @@ private:
         return box;
     }
 
+    // One ray as a bundle's lanes are: tried against each ellipsoid's box in a leaf (a
+    // leaf holds up to 8), unless it starts beyond the guard distance, where no box may
+    // cull it. Measured (callgrind, whole runs): a shadow ray's test pays (random 1k 3%
+    // fewer instructions, sphereflake 4 1%), a closest-hit ray's does not (sphereflake 4
+    // 4% more).
+    LaneRays<1> one_ray(const V& origin, const V& direction, C t1) const {
+        LaneRays<1> ray;
+        ray.set(0, origin, direction, t1);
+        const C o[3] = {ray.o[0][0], ray.o[1][0], ray.o[2][0]};
+        if (!guarded(o, o)) ray.unculled = 1;
+        return ray;
+    }
+
     // occluded() past the hint: whether an ellipsoid other than the one tried already
     // blocks the ray; blocker becomes the one that does.
     bool blocked_past(const V& point, const V& to_light, std::uint32_t tried, std::uint32_t& blocker) const {
         bool blocked = false;
+        const LaneRays<1> ray = one_ray(point, to_light, C(1));
         traverse<false>(point, to_light, C(1), [&](Child leaf, C&) {
             for (std::uint32_t k = leaf.first; k < leaf.first + leaf.count; ++k)
-                if (k != tried && blocks_segment(items_[k], point, to_light)) {
+                if (k != tried && ray.meeting(item_box(items_[k])) != 0 &&
+                    blocks_segment(items_[k], point, to_light)) {
                     blocker = k;
                     return blocked = true;
                 }
