@@ -238,7 +238,9 @@ private:
     // exit if d_lo >= 0, else an entry. The slab test takes [min, max] of p and q, which
     // holds that interval where one is an entry and the other an exit (for one ray, the
     // slab's two ends); where both are entries q is set to +inf, where both are exits p
-    // to -inf.
+    // to -inf. An edge of zero slope exactly on a box's plane gives 0 * inf = NaN, which
+    // may cull the box: every ray of the bundle then stays on or outside that face, so
+    // outside the box's gap, where no root can be (as for one ray, above).
     struct SlabRay {
         C lo_from[3], lo_inv[3];  // for the box's low planes: o_hi, 1 / d_hi
         C hi_from[3], hi_inv[3];  // for its high planes: o_lo, 1 / d_lo
