@@ -94,11 +94,15 @@ public:
     void closest(const V (&origins)[N], const V (&directions)[N], unsigned lanes, double min_t,
                  NearestHit<Real> (&hits)[N]) const {
         for (unsigned m = lanes; m != 0; m &= m - 1) hits[lowest_bit(m)] = {};
+        // The bundle's edges: per axis from the least origin and direction to the greatest
+        // (valid for t >= 0).
         SlabRay ray;
-        C o_lo[3], o_hi[3];
+        C o_lo[3], o_hi[3], d_lo[3], d_hi[3];
+        bounds_of(origins, lanes, o_lo, o_hi);
+        bounds_of(directions, lanes, d_lo, d_hi);
         const bool bundled = lanes != 0 && (lanes & (lanes - 1)) != 0 && !items_.empty() &&
-                             bundle_of(origins, directions, lanes, ray, o_lo, o_hi) && o_lo[0] == o_hi[0] &&
-                             o_lo[1] == o_hi[1] && o_lo[2] == o_hi[2] && guarded(o_lo, o_hi);
+                             o_lo[0] == o_hi[0] && o_lo[1] == o_hi[1] && o_lo[2] == o_hi[2] &&
+                             slab_ray(o_lo, o_hi, d_lo, d_hi, ray) && guarded(o_lo, o_hi);
         if (!bundled) {
             for (unsigned m = lanes; m != 0; m &= m - 1)
                 hits[lowest_bit(m)] = closest(origins[lowest_bit(m)], directions[lowest_bit(m)], min_t);
@@ -154,12 +158,7 @@ public:
             return lanes != 0 && occluded(points[k], to_light[k], blocker) ? lanes : 0U;
         }
         C o_lo[3], o_hi[3], d_lo[3], d_hi[3];
-        for (int a = 0; a < 3; ++a) o_lo[a] = std::numeric_limits<C>::infinity(), o_hi[a] = -o_lo[a];
-        for (unsigned m = lanes; m != 0; m &= m - 1) {
-            const V& p = points[lowest_bit(m)];
-            const C o[3] = {C(p.x), C(p.y), C(p.z)};
-            for (int a = 0; a < 3; ++a) o_lo[a] = std::min(o_lo[a], o[a]), o_hi[a] = std::max(o_hi[a], o[a]);
-        }
+        bounds_of(points, lanes, o_lo, o_hi);
         const C to[3] = {C(light.x), C(light.y), C(light.z)};
         for (int a = 0; a < 3; ++a) {
             const C slack = 4 * C(scene_epsilon<Real>()) *
@@ -297,13 +296,13 @@ private:
     // The rays of a bundle's lanes, by axis and lane, each to be met within [0, t1[k].
     template <int N>
     struct LaneRays {
-        C o[3][N] = {}, inv[3][N] = {}, t1[N] = {};
-        unsigned unculled = 0;                   // lanes always met: a direction without a finite inverse
         Real from[3][N] = {}, along[3][N] = {};  // the rays as given, for intersect_lanes()
+        C inv[3][N] = {}, t1[N] = {};            // for the slab tests
+        unsigned unculled = 0;                   // lanes always met: a direction without a finite inverse
 
         void set(int k, const V& origin, const V& direction, C end) {
             const C d[3] = {C(direction.x), C(direction.y), C(direction.z)};
-            o[0][k] = C(origin.x), o[1][k] = C(origin.y), o[2][k] = C(origin.z), t1[k] = end;
+            t1[k] = end;
             from[0][k] = origin.x, from[1][k] = origin.y, from[2][k] = origin.z;
             along[0][k] = direction.x, along[1][k] = direction.y, along[2][k] = direction.z;
             for (int a = 0; a < 3; ++a) {
@@ -329,7 +328,8 @@ private:
                 const C lo = box.lo[a], hi = box.hi[a];
                 RT_VECTOR_LOOP
                 for (int k = 0; k < N; ++k)
-                    clip_to_slab((lo - o[a][k]) * inv[a][k], (hi - o[a][k]) * inv[a][k], enter[k], leave[k]);
+                    clip_to_slab((lo - C(from[a][k])) * inv[a][k], (hi - C(from[a][k])) * inv[a][k], enter[k],
+                                 leave[k]);
             }
             unsigned mask = unculled;
             RT_VECTOR_LOOP
@@ -338,24 +338,15 @@ private:
         }
     };
 
-    // The slab ray of a bundle that holds every lane's ray, per axis from the least
-    // origin and direction to the greatest (valid for t >= 0), or false (see slab_ray()).
+    // Per axis, the least and the greatest of v[k] over the lanes.
     template <int N>
-    bool bundle_of(const V (&origins)[N], const V (&directions)[N], unsigned lanes, SlabRay& ray,
-                   C (&o_lo)[3], C (&o_hi)[3]) const {
-        C d_lo[3], d_hi[3];
-        for (int a = 0; a < 3; ++a)
-            o_lo[a] = d_lo[a] = std::numeric_limits<C>::infinity(), o_hi[a] = d_hi[a] = -o_lo[a];
+    static void bounds_of(const V (&v)[N], unsigned lanes, C (&lo)[3], C (&hi)[3]) {
+        for (int a = 0; a < 3; ++a) lo[a] = std::numeric_limits<C>::infinity(), hi[a] = -lo[a];
         for (unsigned m = lanes; m != 0; m &= m - 1) {
-            const int k = lowest_bit(m);
-            const C o[3] = {C(origins[k].x), C(origins[k].y), C(origins[k].z)};
-            const C d[3] = {C(directions[k].x), C(directions[k].y), C(directions[k].z)};
-            for (int a = 0; a < 3; ++a) {
-                o_lo[a] = std::min(o_lo[a], o[a]), o_hi[a] = std::max(o_hi[a], o[a]);
-                d_lo[a] = std::min(d_lo[a], d[a]), d_hi[a] = std::max(d_hi[a], d[a]);
-            }
+            const V& p = v[lowest_bit(m)];
+            const C c[3] = {C(p.x), C(p.y), C(p.z)};
+            for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], c[a]), hi[a] = std::max(hi[a], c[a]);
         }
-        return slab_ray(o_lo, o_hi, d_lo, d_hi, ray);
     }
 
     // Which children of node the ray may meet within [0, t1] (bit k for child k), and
@@ -398,7 +389,8 @@ private:
     // too, so that the box's own rounding stays inside the gap even for a small
     // ellipsoid far from the origin, and by the smallest subnormal, as a scale below 500
     // of them is its own product with 1 + kInflation: a gap of one ulp is still
-    // > kInflation of it.
+    // > kInflation of it. Computed where a leaf is visited, not stored: 48 bytes an
+    // ellipsoid would take random 100k's prepared peak past 64 MiB.
     static BuildBox<C> item_box(const Ellipsoid<Real>& e) {
         using std::abs;
         const C c[3] = {C(e.centre.x), C(e.centre.y), C(e.centre.z)};
@@ -420,7 +412,7 @@ private:
     LaneRays<1> one_ray(const V& origin, const V& direction, C t1) const {
         LaneRays<1> ray;
         ray.set(0, origin, direction, t1);
-        const C o[3] = {ray.o[0][0], ray.o[1][0], ray.o[2][0]};
+        const C o[3] = {C(origin.x), C(origin.y), C(origin.z)};
         if (!guarded(o, o)) ray.unculled = 1;
         return ray;
     }

@@ -79,7 +79,7 @@ public:
             Scratch& scratch) const {
         const Surface s = surface(hit, origin, direction, reflections_left);
         V colour = s.material->ambient;
-        for (std::size_t li = 0; li < lights_.size() && s.lit; ++li) {
+        for (std::size_t li = 0; li < lights_.size() && !s.material->no_lighting; ++li) {
             const LightRay r = light_ray(s, li);
             // A light behind the surface adds nothing, blocked or not.
             if (r.faces && !geometry_.occluded(s.point, r.to_light, scratch.blockers[li]))
@@ -103,7 +103,6 @@ public:
         const Ellipsoid<Real>* ellipsoid;
         const Material* material;
         V point, normal, to_viewer;  // the normal faces the viewer
-        bool lit;                    // some light can add to it
         bool reflects;               // a reflected ray is traced
     };
     Surface surface(const NearestHit<Real>& hit, const V& origin, const V& direction,
@@ -115,7 +114,6 @@ public:
         s.normal = normalize((s.point - s.ellipsoid->centre) / s.ellipsoid->scale_squared);
         if (hit.inside) s.normal = -s.normal;  // seen from inside: face the viewer
         s.to_viewer = normalize(-direction);
-        s.lit = !s.material->no_lighting;
         s.reflects = s.ellipsoid->kr > 0 && reflections_left > 0;
         return s;
     }

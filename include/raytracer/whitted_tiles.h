@@ -56,7 +56,7 @@ private:
             surface[k] = tracer_.surface(hit, origin[k], direction[k], reflections_left);
             colour[k] = surface[k].material->ambient;
             hits |= 1U << k;
-            lit |= surface[k].lit ? 1U << k : 0U;
+            lit |= surface[k].material->no_lighting ? 0U : 1U << k;
             reflecting |= surface[k].reflects ? 1U << k : 0U;
         }
         if (hits == 0) return;
