@@ -109,12 +109,16 @@ public:
             return;
         }
         const Real beyond = visible_beyond(Real(min_t));
-        LaneRays<N> rays;
-        for (unsigned m = lanes; m != 0; m &= m - 1)
-            rays.set(lowest_bit(m), origins[lowest_bit(m)], directions[lowest_bit(m)],
-                     std::numeric_limits<C>::infinity());
+        // In a leaf the bundle is tried against each ellipsoid's box first; each lane's own
+        // ray is set up where the bundle first meets one (a small scene's tree is a leaf or
+        // two, which most of its tiles reach and miss).
+        LaneRays<N> rays;  // NOLINT(cppcoreguidelines-pro-type-member-init): set() before use
+        bool rays_set = false;
         traverse<true, true>(ray, std::numeric_limits<C>::infinity(), [&](Child leaf, C& t1) {
             for (std::uint32_t i = leaf.first; i < leaf.first + leaf.count; ++i) {
+                if (!meets_box(ray, item_box(items_[i]), t1)) continue;
+                if (!rays_set)
+                    rays.set(origins, directions, lanes, std::numeric_limits<C>::infinity()), rays_set = true;
                 Real hit[N], near[N], far[N];
                 for (unsigned m = rays.roots(items_[i], lanes, hit, near, far); m != 0; m &= m - 1) {
                     const int k = lowest_bit(m);
@@ -125,6 +129,7 @@ public:
                         hits[k] = {t, index_[i], inside}, rays.t1[k] = C(t);
                 }
             }
+            if (!rays_set) return false;
             C farthest = 0;  // no box entered beyond every lane's nearest root holds a nearer one
             for (unsigned m = lanes; m != 0; m &= m - 1)
                 farthest = std::max(farthest, rays.t1[lowest_bit(m)]);
@@ -175,9 +180,8 @@ public:
         }
         // In a leaf, each lane's own ray is tried against each ellipsoid's box first; the
         // hint (the ellipsoid that blocked this light last) for all lanes at once first.
-        LaneRays<N> rays;
-        for (unsigned m = lanes; m != 0; m &= m - 1)
-            rays.set(lowest_bit(m), points[lowest_bit(m)], to_light[lowest_bit(m)], 1);
+        LaneRays<N> rays;  // NOLINT(cppcoreguidelines-pro-type-member-init): set() here
+        rays.set(points, to_light, lanes, 1);
         const std::uint32_t tried = blocker;
         auto try_ellipsoid = [&](std::uint32_t i, unsigned open) {
             Real hit[N], near[N], far[N];
@@ -293,21 +297,45 @@ private:
         leave = last < leave ? last : leave;
     }
 
+    // Whether a ray from within every guard distance, or a bundle of them, may meet the
+    // box within [0, t1]: meets() for one box.
+    static bool meets_box(const SlabRay& ray, const BuildBox<C>& box, C t1) {
+        C enter = 0, leave = t1;
+        for (int a = 0; a < 3; ++a)
+            clip_to_slab((box.lo[a] - ray.lo_from[a]) * ray.lo_inv[a],
+                         (box.hi[a] - ray.hi_from[a]) * ray.hi_inv[a], enter, leave);
+        return enter <= leave;
+    }
+
     // The rays of a bundle's lanes, by axis and lane, each to be met within [0, t1[k].
+    // Written by set() alone, every lane: not zeroed first (a few KB a tile).
     template <int N>
     struct LaneRays {
-        Real from[3][N] = {}, along[3][N] = {};  // the rays as given, for intersect_lanes()
-        C inv[3][N] = {}, t1[N] = {};            // for the slab tests
-        unsigned unculled = 0;                   // lanes always met: a direction without a finite inverse
+        Real from[3][N], along[3][N];  // the rays as given, for intersect_lanes()
+        C inv[3][N], t1[N];            // for the slab tests
+        unsigned unculled;             // lanes always met: a direction without a finite inverse
 
-        void set(int k, const V& origin, const V& direction, C end) {
-            const C d[3] = {C(direction.x), C(direction.y), C(direction.z)};
-            t1[k] = end;
-            from[0][k] = origin.x, from[1][k] = origin.y, from[2][k] = origin.z;
-            along[0][k] = direction.x, along[1][k] = direction.y, along[2][k] = direction.z;
-            for (int a = 0; a < 3; ++a) {
-                inv[a][k] = 1 / d[a];
-                if (d[a] != 0 && !(std::abs(inv[a][k]) <= std::numeric_limits<C>::max())) unculled |= 1U << k;
+        // Lane k of lanes: origins[k] + t directions[k] for t in [0, end]; the other lanes
+        // zero (their answers are dropped).
+        void set(const V (&origins)[N], const V (&directions)[N], unsigned lanes, C end) {
+            unculled = 0;
+            for (int k = 0; k < N; ++k) {
+                if ((lanes >> k & 1U) == 0) {
+                    t1[k] = 0;
+                    for (int a = 0; a < 3; ++a) from[a][k] = along[a][k] = 0, inv[a][k] = 0;
+                    continue;
+                }
+                const V& o = origins[k];
+                const V& d = directions[k];
+                const C along_c[3] = {C(d.x), C(d.y), C(d.z)};
+                t1[k] = end;
+                from[0][k] = o.x, from[1][k] = o.y, from[2][k] = o.z;
+                along[0][k] = d.x, along[1][k] = d.y, along[2][k] = d.z;
+                for (int a = 0; a < 3; ++a) {
+                    inv[a][k] = 1 / along_c[a];
+                    if (along_c[a] != 0 && !(std::abs(inv[a][k]) <= std::numeric_limits<C>::max()))
+                        unculled |= 1U << k;
+                }
             }
         }
         // Which of lanes may meet e's box; where some do, every lane's roots with e, in
@@ -410,8 +438,9 @@ private:
     // fewer instructions, sphereflake 4 1%), a closest-hit ray's does not (sphereflake 4
     // 4% more).
     LaneRays<1> one_ray(const V& origin, const V& direction, C t1) const {
-        LaneRays<1> ray;
-        ray.set(0, origin, direction, t1);
+        LaneRays<1> ray;  // NOLINT(cppcoreguidelines-pro-type-member-init): set() here
+        const V origins[1] = {origin}, directions[1] = {direction};
+        ray.set(origins, directions, 1, t1);
         const C o[3] = {C(origin.x), C(origin.y), C(origin.z)};
         if (!guarded(o, o)) ray.unculled = 1;
         return ray;

@@ -22,77 +22,105 @@ public:
     using V = Vec3<Real>;
     static_assert(N >= 1 && N <= 32, "a tile's lanes are the bits of an unsigned");
 
-    explicit WhittedTiles(const Tracer& tracer) : tracer_(tracer) {}
+    explicit WhittedTiles(const Tracer& tracer) : tracer_(tracer) {
+        const V& back = tracer.background();
+        background_[0] = to_byte(back.x), background_[1] = to_byte(back.y), background_[2] = to_byte(back.z);
+    }
+
+    // One bounce's lanes: the rays, what they hit, and their colours.
+    struct Bounce {
+        V origin[N], direction[N], colour[N];
+        NearestHit<Real> hit[N];
+        typename Tracer::Surface surface[N];
+        V point[N];  // surface[k].point, as the bundle queries take them
+        typename Tracer::LightRay light[N];
+    };
+    // A thread's working memory: the tracer's, and the lanes of each bounce, made once
+    // (a tile's arrays are a few KB: set up per tile, they cost more than a missed tile's
+    // tracing).
+    struct Scratch {
+        typename Tracer::Scratch tracer;
+        std::vector<Bounce> bounces;
+    };
+    Scratch make_scratch() const {
+        return {tracer_.make_scratch(), std::vector<Bounce>(kMaxReflections + 1)};
+    }
 
     // The bytes of up to N pixels whose eye rays go from the camera through (x[k], y[k]),
     // for each lane k in lanes, to out[k].
     void pixels(const Real (&x)[N], const Real (&y)[N], unsigned lanes, std::uint8_t* const (&out)[N],
-                typename Tracer::Scratch& scratch) const {
-        V origin[N], direction[N], colour[N];
-        for (int k = 0; k < N; ++k) origin[k] = {}, direction[k] = {x[k], y[k], tracer_.near_z()};
-        trace(origin, direction, kEyeRayMinT, kMaxReflections, tracer_.background(), lanes, colour, scratch);
+                Scratch& scratch) const {
+        Bounce& eye = scratch.bounces[0];
         for (unsigned m = lanes; m != 0; m &= m - 1) {
             const int k = lowest_bit(m);
-            out[k][0] = to_byte(colour[k].x), out[k][1] = to_byte(colour[k].y),
-            out[k][2] = to_byte(colour[k].z);
+            eye.origin[k] = {}, eye.direction[k] = {x[k], y[k], tracer_.near_z()};
+        }
+        const unsigned hits = trace(0, kEyeRayMinT, tracer_.background(), lanes, scratch);
+        for (unsigned m = lanes & ~hits; m != 0; m &= m - 1) {  // BACK: its bytes, made once
+            const int k = lowest_bit(m);
+            out[k][0] = background_[0], out[k][1] = background_[1], out[k][2] = background_[2];
+        }
+        for (unsigned m = hits; m != 0; m &= m - 1) {
+            const int k = lowest_bit(m);
+            const V& colour = eye.colour[k];
+            out[k][0] = to_byte(colour.x), out[k][1] = to_byte(colour.y), out[k][2] = to_byte(colour.z);
         }
     }
 
 private:
-    // Whitted::trace() for each lane in lanes.
-    void trace(const V (&origin)[N], const V (&direction)[N], double min_t, int reflections_left,
-               const V& miss, unsigned lanes, V (&colour)[N], typename Tracer::Scratch& scratch) const {
-        typename Tracer::Surface surface[N];
+    // Whitted::trace() for each lane in lanes of bounce `depth`: its rays' colours; the
+    // lanes whose rays hit something.
+    unsigned trace(int depth, double min_t, const V& miss, unsigned lanes, Scratch& scratch) const {
+        Bounce& b = scratch.bounces[static_cast<std::size_t>(depth)];
+        const int reflections_left = kMaxReflections - depth;
         unsigned hits = 0, lit = 0, reflecting = 0;
-        NearestHit<Real> found[N];
-        tracer_.geometry().closest(origin, direction, lanes, min_t, found);
+        tracer_.geometry().closest(b.origin, b.direction, lanes, min_t, b.hit);
         for (unsigned m = lanes; m != 0; m &= m - 1) {
             const int k = lowest_bit(m);
-            const NearestHit<Real>& hit = found[k];
-            if (!hit.found()) {
-                colour[k] = miss;
+            if (!b.hit[k].found()) {
+                b.colour[k] = miss;
                 continue;
             }
-            surface[k] = tracer_.surface(hit, origin[k], direction[k], reflections_left);
-            colour[k] = surface[k].material->ambient;
+            typename Tracer::Surface& s = b.surface[k];
+            s = tracer_.surface(b.hit[k], b.origin[k], b.direction[k], reflections_left);
+            b.point[k] = s.point;
+            b.colour[k] = s.material->ambient;
             hits |= 1U << k;
-            lit |= surface[k].material->no_lighting ? 0U : 1U << k;
-            reflecting |= surface[k].reflects ? 1U << k : 0U;
+            lit |= s.material->no_lighting ? 0U : 1U << k;
+            reflecting |= s.reflects ? 1U << k : 0U;
         }
-        if (hits == 0) return;
+        if (hits == 0) return hits;
         for (std::size_t li = 0; li < tracer_.light_count() && lit != 0; ++li) {
-            typename Tracer::LightRay ray[N];
-            V point[N];
             unsigned facing = 0;  // with a light ray to try
             for (unsigned m = lit; m != 0; m &= m - 1) {
                 const int k = lowest_bit(m);
-                ray[k] = tracer_.light_ray(surface[k], li);
-                point[k] = surface[k].point;
-                facing |= ray[k].faces ? 1U << k : 0U;
+                b.light[k] = tracer_.light_ray(b.surface[k], li);
+                facing |= b.light[k].faces ? 1U << k : 0U;
             }
             unsigned blocked = 0;
             for (unsigned left = facing; left != 0;) {
-                const unsigned bundle = close_lanes(surface, left);
+                const unsigned bundle = close_lanes(b.surface, left);
                 left &= ~bundle;
-                blocked |= tracer_.geometry().occluded(point, tracer_.light_position(li), bundle,
-                                                       scratch.blockers[li]);
+                blocked |= tracer_.geometry().occluded(b.point, tracer_.light_position(li), bundle,
+                                                       scratch.tracer.blockers[li]);
             }
             for (unsigned m = facing & ~blocked; m != 0; m &= m - 1) {
                 const int k = lowest_bit(m);
-                tracer_.add_light(colour[k], surface[k], li, ray[k]);
+                tracer_.add_light(b.colour[k], b.surface[k], li, b.light[k]);
             }
         }
-        if (reflecting == 0) return;
-        V point[N], mirrored[N], seen[N];
+        if (reflecting == 0) return hits;
+        Bounce& next = scratch.bounces[static_cast<std::size_t>(depth) + 1];
         for (unsigned m = reflecting; m != 0; m &= m - 1) {
             const int k = lowest_bit(m);
-            point[k] = surface[k].point, mirrored[k] = Tracer::mirrored(surface[k], direction[k]);
+            next.origin[k] = b.point[k], next.direction[k] = Tracer::mirrored(b.surface[k], b.direction[k]);
         }
-        trace(point, mirrored, kReflectedRayMinT, reflections_left - 1, V{}, reflecting, seen, scratch);
+        trace(depth + 1, kReflectedRayMinT, V{}, reflecting, scratch);
         for (unsigned m = reflecting; m != 0; m &= m - 1) {
             const int k = lowest_bit(m);
-            colour[k] += seen[k] * surface[k].ellipsoid->kr;
+            b.colour[k] += next.colour[k] * b.surface[k].ellipsoid->kr;
         }
+        return hits;
     }
 
     // A bundle for the first of lanes: the lanes on its ellipsoid, when there are at
@@ -122,6 +150,7 @@ private:
     }
 
     const Tracer& tracer_;
+    std::uint8_t background_[3];  // the bytes of BACK
 };
 
 }  // namespace rt
