@@ -62,8 +62,12 @@ void render_pixels_to(const Scene& scene, Geometry geometry, RowSink& sink, unsi
     // the same whichever thread renders which rows.
     std::atomic<int> next_row{0};
     auto take_rows = [&]() {
-        auto scratch = tracer.make_scratch();
-        auto tile_scratch = tiles.make_scratch();  // (used where kTiles)
+        auto scratch = [&] {
+            if constexpr (kTiles)
+                return tiles.make_scratch();
+            else
+                return tracer.make_scratch();
+        }();
         for (int r = next_row.fetch_add(kBandRows); r < scene.rows; r = next_row.fetch_add(kBandRows)) {
             const int end = std::min(r + kBandRows, scene.rows);
             ring.reserve(end);
@@ -85,7 +89,7 @@ void render_pixels_to(const Scene& scene, Geometry geometry, RowSink& sink, unsi
                             out[k] = band_out[b] + static_cast<std::size_t>(c) * 3;
                             lanes |= 1U << k;
                         }
-                    tiles.pixels(x, y, lanes, out, tile_scratch);
+                    tiles.pixels(x, y, lanes, out, scratch);
                 }
             } else {
                 for (int row = r; row < end; ++row) {
