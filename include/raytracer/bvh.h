@@ -1,41 +1,36 @@
-// The acceleration layer: a bounding volume hierarchy over the ellipsoids' boxes, with
-// the queries of brute_force.h (closest hit, any hit) in time that grows like log N.
+// The acceleration layer: a bounding volume hierarchy over the ellipsoids' boxes, with the queries of
+// brute_force.h (closest hit, any hit) in time that grows like log N.
 //
-// The tree is built binary (bvh_build.h) and collapsed into nodes of Width children,
-// whose boxes are stored as structure of arrays and tested against a ray in one loop
-// over the lanes that the compiler turns into vector instructions (8 doubles, one
-// AVX-512 register or two AVX2 ones, measured faster here than 4): Embree's BVH4/BVH8 (I. Wald et al.,
-// "Embree: A Kernel Framework for Efficient CPU Ray Tracing", ACM TOG 33(4), 2014). Children are visited
-// nearest first; the closest-hit query skips a subtree that starts beyond the nearest root found so far.
+// The tree is built binary and collapsed into nodes of Width children (bvh_build.h), whose boxes are stored
+// as structure of arrays and tested against a ray in one loop over the lanes that the compiler turns into
+// vector instructions (8 doubles, one AVX-512 register or two AVX2 ones, measured faster here than 4):
+// Embree's BVH4/BVH8 (I. Wald et al., "Embree: A Kernel Framework for Efficient CPU Ray Tracing", ACM TOG
+// 33(4), 2014). Children are visited nearest first; the closest-hit query skips a subtree that starts beyond
+// the nearest root found so far.
 //
-// Exactness: a query returns what brute_force.h returns, bit for bit. Each ellipsoid's
-// box is its axis-aligned bounding box grown by kInflation of each scale, a gap of
-// 1e-3 in the unit sphere's space; a root that intersect() reports lies within a few
-// ulps of |o'| of the unit sphere (the rounding of the mapped origin, plus the tangency
-// allowance, ellipsoid.h), so its point lies deep inside the box, and the slab test's
-// own rounding (a few ulps of the box's distance) cannot move it out. A ray that runs
-// in a slab's plane, where the slab test's 0 * inf is NaN, cannot reach a box's inside
-// at all. Both hold only while the ray's origin is within kReach of the ellipsoid's
-// smallest scale (|o'| <= 1e6 in double: rounding ~1e-10 against the gap of 1e-3), as
-// in sphere_bounds.h: a child is culled only for a ray from within the guard distance
-// of every ellipsoid under it, else visited unculled. A child whose box holds the
-// ray's origin is never culled either: from a point on the surface (|o'| = 1 within
-// rounding) along its tangent plane, o'.d' is a rounding residue, and where intersect()
-// clamps the discriminant to zero (the tangency allowance) its second root c/q is
-// c / |o'.d'|, anywhere along the ray, far outside the box (a shadow ray towards a
-// light 2000 radii away leaves the box before t = 0.001 and is still "blocked" at
-// t ~ 0.5). From outside the box, |o'.d'| / |d'| >= sqrt(1.001^2 - 1) ~ 0.045 bounds
-// that root's distance from the tangent point to ~90 eps (1 + |o'|), deep inside the
-// gap. The ellipsoids of a leaf are always tried with the exact intersect(). Ties
-// between equal roots go to the lower index (NearestHit::replaced_by()), as in the loop
-// over all.
+// Exactness: a query returns what brute_force.h returns, bit for bit. Each ellipsoid's box is its
+// axis-aligned bounding box grown by kBoxInflation of each scale (slab_rays.h), a gap of 1e-3 in the unit
+// sphere's space; a root that intersect() reports lies within a few ulps of |o'| of the unit sphere (the
+// rounding of the mapped origin, plus the tangency allowance, ellipsoid.h), so its point lies deep inside the
+// box, and the slab test's own rounding (a few ulps of the box's distance) cannot move it out. A ray that
+// runs in a slab's plane, where the slab test's 0 * inf is NaN, cannot reach a box's inside at all. Both hold
+// only while the ray's origin is within kReach of the ellipsoid's smallest scale (|o'| <= 1e6 in double:
+// rounding ~1e-10 against the gap of 1e-3), as in sphere_bounds.h: a child is culled only for a ray from
+// within the guard distance of every ellipsoid under it, else visited unculled. A child whose box holds the
+// ray's origin is never culled either: from a point on the surface (|o'| = 1 within rounding) along its
+// tangent plane, o'.d' is a rounding residue, and where intersect() clamps the discriminant to zero (the
+// tangency allowance) its second root c/q is c / |o'.d'|, anywhere along the ray, far outside the box (a
+// shadow ray towards a light 2000 radii away leaves the box before t = 0.001 and is still "blocked" at t ~
+// 0.5). From outside the box, |o'.d'| / |d'| >= sqrt(1.001^2 - 1) ~ 0.045 bounds that root's distance from
+// the tangent point to ~90 eps (1 + |o'|), deep inside the gap. The ellipsoids of a leaf are always tried
+// with the exact intersect(). Ties between equal roots go to the lower index (NearestHit::replaced_by()), as
+// in the loop over all.
 //
-// Memory: the tree and a copy of the ellipsoids in leaf order; a query uses a fixed
-// stack, the same for any scene.
+// Memory: the tree and a copy of the ellipsoids in leaf order; a query uses a fixed stack, the same for any
+// scene.
 #pragma once
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -47,8 +42,8 @@
 #include "raytracer/bvh_build.h"
 #include "raytracer/compiler.h"
 #include "raytracer/ellipsoid.h"
-#include "raytracer/intersect_lanes.h"
 #include "raytracer/scene_precision.h"
+#include "raytracer/slab_rays.h"
 #include "raytracer/spec_rules.h"
 #include "raytracer/vec3.h"
 
@@ -60,8 +55,6 @@ public:
     using V = Vec3<Real>;
     using C = AtLeastDouble<Real>;  // boxes and slab tests
     static_assert(Width >= 2 && Width <= 16, "a node holds 2 to 16 children");
-
-    static constexpr double kInflation = 1e-3;  // as sphere_bounds.h
 
     // threads: how many may build the tree (1 or 2 are used).
     explicit Bvh(std::vector<Ellipsoid<Real>> ellipsoids, unsigned threads = 1);
@@ -87,36 +80,35 @@ public:
 
     // closest() for each lane k in `lanes` of a bundle of rays from one origin (eye
     // rays), into hits[k]. The bundle goes down the tree as one slab ray, nearest first,
-    // until no lane can find a nearer root; in a leaf each lane's ray is tried against
-    // each ellipsoid's box, then exactly. Rays from different origins go one by one:
-    // their bundle would widen without end.
+    // until no lane can find a nearer root; in a leaf the bundle, then each lane's ray,
+    // is tried against each ellipsoid's box, then each lane's exactly (the lanes are set
+    // up where the bundle first meets a box: a small scene's tiles mostly reach its leaf
+    // or two and miss). Rays from different origins go one by one: their bundle would
+    // widen without end.
     template <int N>
     void closest(const V (&origins)[N], const V (&directions)[N], unsigned lanes, double min_t,
                  NearestHit<Real> (&hits)[N]) const {
         for (unsigned m = lanes; m != 0; m &= m - 1) hits[lowest_bit(m)] = {};
         // The bundle's edges: per axis from the least origin and direction to the greatest
         // (valid for t >= 0).
-        SlabRay ray;
+        SlabRay<C> ray;
         C o_lo[3], o_hi[3], d_lo[3], d_hi[3];
         bounds_of(origins, lanes, o_lo, o_hi);
         bounds_of(directions, lanes, d_lo, d_hi);
         const bool bundled = lanes != 0 && (lanes & (lanes - 1)) != 0 && !items_.empty() &&
                              o_lo[0] == o_hi[0] && o_lo[1] == o_hi[1] && o_lo[2] == o_hi[2] &&
-                             slab_ray(o_lo, o_hi, d_lo, d_hi, ray) && guarded(o_lo, o_hi);
+                             make_slab_ray(o_lo, o_hi, d_lo, d_hi, ray) && guarded(o_lo, o_hi);
         if (!bundled) {
             for (unsigned m = lanes; m != 0; m &= m - 1)
                 hits[lowest_bit(m)] = closest(origins[lowest_bit(m)], directions[lowest_bit(m)], min_t);
             return;
         }
         const Real beyond = visible_beyond(Real(min_t));
-        // In a leaf the bundle is tried against each ellipsoid's box first; each lane's own
-        // ray is set up where the bundle first meets one (a small scene's tree is a leaf or
-        // two, which most of its tiles reach and miss).
-        LaneRays<N> rays;  // NOLINT(cppcoreguidelines-pro-type-member-init): set() before use
+        LaneRays<Real, N> rays;  // NOLINT(cppcoreguidelines-pro-type-member-init): set() before use
         bool rays_set = false;
         traverse<true, true>(ray, std::numeric_limits<C>::infinity(), [&](Child leaf, C& t1) {
             for (std::uint32_t i = leaf.first; i < leaf.first + leaf.count; ++i) {
-                if (!meets_box(ray, item_box(items_[i]), t1)) continue;
+                if (!meets_box(ray, inflated_box<C>(items_[i]), t1)) continue;
                 if (!rays_set)
                     rays.set(origins, directions, lanes, std::numeric_limits<C>::infinity()), rays_set = true;
                 Real hit[N], near[N], far[N];
@@ -171,8 +163,8 @@ public:
             d_lo[a] = (to[a] - o_lo[a]) - slack, d_hi[a] = (to[a] - o_hi[a]) + slack;
         }
         unsigned blocked = 0;
-        SlabRay ray;
-        if (items_.empty() || !slab_ray(o_lo, o_hi, d_lo, d_hi, ray) || !guarded(o_lo, o_hi)) {
+        SlabRay<C> ray;
+        if (items_.empty() || !make_slab_ray(o_lo, o_hi, d_lo, d_hi, ray) || !guarded(o_lo, o_hi)) {
             for (unsigned m = lanes; m != 0; m &= m - 1)  // beyond the fast case: ray by ray
                 if (occluded(points[lowest_bit(m)], to_light[lowest_bit(m)], blocker))
                     blocked |= 1U << lowest_bit(m);
@@ -180,7 +172,7 @@ public:
         }
         // In a leaf, each lane's own ray is tried against each ellipsoid's box first; the
         // hint (the ellipsoid that blocked this light last) for all lanes at once first.
-        LaneRays<N> rays;  // NOLINT(cppcoreguidelines-pro-type-member-init): set() here
+        LaneRays<Real, N> rays;  // NOLINT(cppcoreguidelines-pro-type-member-init): set() here
         rays.set(points, to_light, lanes, 1);
         const std::uint32_t tried = blocker;
         auto try_ellipsoid = [&](std::uint32_t i, unsigned open) {
@@ -212,59 +204,12 @@ public:
     std::size_t node_count() const { return nodes_.size(); }
 
 private:
-    // A child: the wide node `first` when count is 0, else the leaf of items
-    // [first, first + count).
-    struct Child {  // trivial: the traversal's stack is not initialised
-        std::uint32_t first, count;
-    };
-    // Width children; their boxes (side 0 the low corner, 1 the high one), by axis and
-    // lane, and guards: a child may be culled for a ray whose origin lies within this
-    // max-norm distance of each of its corners.
-    struct Node {
-        C box[2][3][Width];
-        C guard[Width];
-        Child child[Width];
-        unsigned used;  // bit k for each child k in use
-    };
+    using Child = WideChild;
+    using Node = WideNode<C, Width>;
     struct StackEntry {
         Child child;
         C near;  // where the ray enters its box
     };
-    // A ray, or a bundle of rays, as the slab tests take it: per axis, two edges that
-    // hold the bundle's points at every t in [0, t1], the lower o_lo + t d_lo and the
-    // upper o_hi + t d_hi (one ray: both are the ray; interval arithmetic, as in
-    // S. Boulos et al., "Geometric and Arithmetic Culling Methods for Entire Ray
-    // Packets", University of Utah UUCS-06-010, 2006). A box [lo, hi] can be met only
-    // where the upper edge is >= lo and the lower edge <= hi: the upper edge passes lo at
-    // p = (lo - o_hi) / d_hi, from where on it is above lo if d_hi >= 0 (an entry), up
-    // to where if not (an exit); the lower edge passes hi at q = (hi - o_lo) / d_lo, an
-    // exit if d_lo >= 0, else an entry. The slab test takes [min, max] of p and q, which
-    // holds that interval where one is an entry and the other an exit (for one ray, the
-    // slab's two ends); where both are entries q is set to +inf, where both are exits p
-    // to -inf. An edge of zero slope exactly on a box's plane gives 0 * inf = NaN, which
-    // may cull the box: every ray of the bundle then stays on or outside that face, so
-    // outside the box's gap, where no root can be (as for one ray, above).
-    struct SlabRay {
-        C lo_from[3], lo_inv[3];  // for the box's low planes: o_hi, 1 / d_hi
-        C hi_from[3], hi_inv[3];  // for its high planes: o_lo, 1 / d_lo
-    };
-    // The slab ray of a bundle's edges, or false where a direction has a component
-    // without a finite inverse (a subnormal scene; such a ray is tried against every
-    // ellipsoid: an infinite inverse makes a slab's t infinite where it is finite).
-    static bool slab_ray(const C (&o_lo)[3], const C (&o_hi)[3], const C (&d_lo)[3], const C (&d_hi)[3],
-                         SlabRay& ray) {
-        constexpr C kInf = std::numeric_limits<C>::infinity();
-        for (int a = 0; a < 3; ++a) {
-            for (const C d : {d_lo[a], d_hi[a]})
-                if (d != 0 && !(std::abs(1 / d) <= std::numeric_limits<C>::max())) return false;
-            // -0 as +0, so that a zero's sign follows the cases below.
-            ray.lo_from[a] = o_hi[a], ray.lo_inv[a] = 1 / (d_hi[a] == 0 ? C(0) : d_hi[a]);
-            ray.hi_from[a] = o_lo[a], ray.hi_inv[a] = 1 / (d_lo[a] == 0 ? C(0) : d_lo[a]);
-            if (d_lo[a] < 0 && d_hi[a] >= 0) ray.hi_from[a] = -kInf, ray.hi_inv[a] = 1;  // q = +inf
-            if (d_lo[a] >= 0 && d_hi[a] < 0) ray.lo_from[a] = kInf, ray.lo_inv[a] = 1;   // p = -inf
-        }
-        return true;
-    }
     // Whether a ray from within the box [o_lo, o_hi] is within every guard distance
     // (nearly every ray: the scene is far smaller than 1e6 of its smallest scale), so
     // that no node needs its guards checked.
@@ -286,107 +231,15 @@ private:
     template <bool kNearestFirst, typename Leaf>
     void traverse(const V& origin, const V& direction, C t1, Leaf leaf) const;
     template <bool kNearestFirst, bool kGuarded, typename Leaf>
-    void traverse(const SlabRay& ray, C t1, Leaf leaf) const;
+    void traverse(const SlabRay<C>& ray, C t1, Leaf leaf) const;
 
-    // [enter, leave] clipped to one axis's slab, given its p and q (SlabRay).
-    RT_ALWAYS_INLINE static void clip_to_slab(C p, C q, C& enter, C& leave) {
-        constexpr C kEps = std::numeric_limits<C>::epsilon() / 2;
-        constexpr C kWiden = 1 + 2 * (3 * kEps / (1 - 3 * kEps));
-        const C first = p < q ? p : q, last = (p < q ? q : p) * kWiden;
-        enter = first > enter ? first : enter;
-        leave = last < leave ? last : leave;
-    }
-
-    // Whether a ray from within every guard distance, or a bundle of them, may meet the
-    // box within [0, t1]: meets() for one box.
-    static bool meets_box(const SlabRay& ray, const BuildBox<C>& box, C t1) {
-        C enter = 0, leave = t1;
-        for (int a = 0; a < 3; ++a)
-            clip_to_slab((box.lo[a] - ray.lo_from[a]) * ray.lo_inv[a],
-                         (box.hi[a] - ray.hi_from[a]) * ray.hi_inv[a], enter, leave);
-        return enter <= leave;
-    }
-
-    // The rays of a bundle's lanes, by axis and lane, each to be met within [0, t1[k].
-    // Written by set() alone, every lane: not zeroed first (a few KB a tile).
-    template <int N>
-    struct LaneRays {
-        Real from[3][N], along[3][N];  // the rays as given, for intersect_lanes()
-        C inv[3][N], t1[N];            // for the slab tests
-        unsigned unculled;             // lanes always met: a direction without a finite inverse
-
-        // Lane k of lanes: origins[k] + t directions[k] for t in [0, end]; the other lanes
-        // zero (their answers are dropped).
-        void set(const V (&origins)[N], const V (&directions)[N], unsigned lanes, C end) {
-            unculled = 0;
-            for (int k = 0; k < N; ++k) {
-                if ((lanes >> k & 1U) == 0) {
-                    t1[k] = 0;
-                    for (int a = 0; a < 3; ++a) from[a][k] = along[a][k] = 0, inv[a][k] = 0;
-                    continue;
-                }
-                const V& o = origins[k];
-                const V& d = directions[k];
-                const C along_c[3] = {C(d.x), C(d.y), C(d.z)};
-                t1[k] = end;
-                from[0][k] = o.x, from[1][k] = o.y, from[2][k] = o.z;
-                along[0][k] = d.x, along[1][k] = d.y, along[2][k] = d.z;
-                for (int a = 0; a < 3; ++a) {
-                    inv[a][k] = 1 / along_c[a];
-                    if (along_c[a] != 0 && !(std::abs(inv[a][k]) <= std::numeric_limits<C>::max()))
-                        unculled |= 1U << k;
-                }
-            }
-        }
-        // Which of lanes may meet e's box; where some do, every lane's roots with e, in
-        // one vector loop (intersect()'s, bit for bit).
-        unsigned roots(const Ellipsoid<Real>& e, unsigned lanes, Real (&hit)[N], Real (&near)[N],
-                       Real (&far)[N]) const {
-            const unsigned met = lanes & meeting(item_box(e));
-            if (met != 0)
-                intersect_lanes<N>(e, from[0], from[1], from[2], along[0], along[1], along[2], hit, near,
-                                   far);
-            return met;
-        }
-        // The lanes whose guarded ray may meet the box, all lanes in one vector loop.
-        unsigned meeting(const BuildBox<C>& box) const {
-            C enter[N], leave[N];
-            for (int k = 0; k < N; ++k) enter[k] = 0, leave[k] = t1[k];
-            for (int a = 0; a < 3; ++a) {
-                const C lo = box.lo[a], hi = box.hi[a];
-                RT_VECTOR_LOOP
-                for (int k = 0; k < N; ++k)
-                    clip_to_slab((lo - C(from[a][k])) * inv[a][k], (hi - C(from[a][k])) * inv[a][k], enter[k],
-                                 leave[k]);
-            }
-            unsigned mask = unculled;
-            RT_VECTOR_LOOP
-            for (int k = 0; k < N; ++k) mask |= enter[k] <= leave[k] ? 1U << k : 0U;
-            return mask;
-        }
-    };
-
-    // Per axis, the least and the greatest of v[k] over the lanes.
-    template <int N>
-    static void bounds_of(const V (&v)[N], unsigned lanes, C (&lo)[3], C (&hi)[3]) {
-        for (int a = 0; a < 3; ++a) lo[a] = std::numeric_limits<C>::infinity(), hi[a] = -lo[a];
-        for (unsigned m = lanes; m != 0; m &= m - 1) {
-            const V& p = v[lowest_bit(m)];
-            const C c[3] = {C(p.x), C(p.y), C(p.z)};
-            for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], c[a]), hi[a] = std::max(hi[a], c[a]);
-        }
-    }
-
-    // Which children of node the ray may meet within [0, t1] (bit k for child k), and
-    // where it enters each. A slab is computed with at most 3 roundings, so the far end
-    // is widened by 2 gamma(3) (pbrt-v4, section 6.8.2). The slabs are clipped at t = 0,
-    // not at the query's own start, so that a box holding the origin inside is always
-    // met (the tangent roots above; a point on a surface lies inside its box's gap):
-    // there each slab's near end is <= 0 and its far end >= 0, signs that the rounding
-    // of (plane - o) * inv keeps exactly.
-    // kGuarded: the ray's origin is known to be within every guard distance.
+    // Which children of node the ray may meet within [0, t1] (bit k for child k), and where
+    // it enters each. The slabs are clipped at t = 0, not at the query's start, so that a
+    // box holding the origin is always met (the tangent roots above): there each slab's
+    // near end is <= 0 and its far end >= 0, signs that the rounding of (plane - o) * inv
+    // keeps exactly. kGuarded: the ray's origin is known to be within every guard distance.
     template <bool kGuarded>
-    static unsigned meets(const Node& node, const SlabRay& ray, C t1, C (&near)[Width]) {
+    static unsigned meets(const Node& node, const SlabRay<C>& ray, C t1, C (&near)[Width]) {
         C enter[Width], leave[Width], farthest[Width];
         for (int k = 0; k < Width; ++k) enter[k] = 0, leave[k] = t1, farthest[k] = 0;
         for (int a = 0; a < 3; ++a) {
@@ -413,47 +266,22 @@ private:
         return mask & node.used;
     }
 
-    // An ellipsoid's box: grown by kInflation of each scale, by 4 ulps of the centre
-    // too, so that the box's own rounding stays inside the gap even for a small
-    // ellipsoid far from the origin, and by the smallest subnormal, as a scale below 500
-    // of them is its own product with 1 + kInflation: a gap of one ulp is still
-    // > kInflation of it. Computed where a leaf is visited, not stored: 48 bytes an
-    // ellipsoid would take random 100k's prepared peak past 64 MiB.
-    static BuildBox<C> item_box(const Ellipsoid<Real>& e) {
-        using std::abs;
-        const C c[3] = {C(e.centre.x), C(e.centre.y), C(e.centre.z)};
-        const C s[3] = {abs(C(e.scale.x)), abs(C(e.scale.y)), abs(C(e.scale.z))};
-        BuildBox<C> box;
-        for (int a = 0; a < 3; ++a) {
-            const C half = s[a] * (1 + C(kInflation)) + abs(c[a]) * 4 * std::numeric_limits<C>::epsilon() +
-                           std::numeric_limits<C>::denorm_min();
-            box.lo[a] = c[a] - half, box.hi[a] = c[a] + half;
-        }
-        return box;
-    }
-
-    // One ray as a bundle's lanes are: tried against each ellipsoid's box in a leaf (a
-    // leaf holds up to 8), unless it starts beyond the guard distance, where no box may
-    // cull it. Measured (callgrind, whole runs): a shadow ray's test pays (random 1k 3%
-    // fewer instructions, sphereflake 4 1%), a closest-hit ray's does not (sphereflake 4
-    // 4% more).
-    LaneRays<1> one_ray(const V& origin, const V& direction, C t1) const {
-        LaneRays<1> ray;  // NOLINT(cppcoreguidelines-pro-type-member-init): set() here
-        const V origins[1] = {origin}, directions[1] = {direction};
-        ray.set(origins, directions, 1, t1);
-        const C o[3] = {C(origin.x), C(origin.y), C(origin.z)};
-        if (!guarded(o, o)) ray.unculled = 1;
-        return ray;
-    }
-
     // occluded() past the hint: whether an ellipsoid other than the one tried already
-    // blocks the ray; blocker becomes the one that does.
+    // blocks the ray; blocker becomes the one that does. In a leaf the ray is tried
+    // against each ellipsoid's box, as a bundle's lanes are, unless it starts beyond the
+    // guard distance, where no box may cull it. Measured (callgrind, whole runs): this
+    // pays for shadow rays (random 1k 3% fewer instructions, sphereflake 4 1%), not for
+    // closest-hit rays (sphereflake 4 4% more).
     bool blocked_past(const V& point, const V& to_light, std::uint32_t tried, std::uint32_t& blocker) const {
         bool blocked = false;
-        const LaneRays<1> ray = one_ray(point, to_light, C(1));
+        LaneRays<Real, 1> ray;  // NOLINT(cppcoreguidelines-pro-type-member-init): set() here
+        const V points[1] = {point}, to_lights[1] = {to_light};
+        ray.set(points, to_lights, 1, C(1));
+        const C o[3] = {C(point.x), C(point.y), C(point.z)};
+        if (!guarded(o, o)) ray.unculled = 1;
         traverse<false>(point, to_light, C(1), [&](Child leaf, C&) {
             for (std::uint32_t k = leaf.first; k < leaf.first + leaf.count; ++k)
-                if (k != tried && ray.meeting(item_box(items_[k])) != 0 &&
+                if (k != tried && ray.meeting(inflated_box<C>(items_[k])) != 0 &&
                     blocks_segment(items_[k], point, to_light)) {
                     blocker = k;
                     return blocked = true;
@@ -462,8 +290,6 @@ private:
         });
         return blocked;
     }
-
-    std::uint32_t collapse(const std::vector<BuildNode<C>>& binary, std::uint32_t b);
 
     std::vector<Node> nodes_;
     Child root_{0, 0};
@@ -480,8 +306,8 @@ void Bvh<Real, Width>::traverse(const V& origin, const V& direction, C t1, Leaf 
     if (items_.empty()) return;
     const C o[3] = {C(origin.x), C(origin.y), C(origin.z)};
     const C d[3] = {C(direction.x), C(direction.y), C(direction.z)};
-    SlabRay ray;
-    if (!slab_ray(o, o, d, d, ray))
+    SlabRay<C> ray;
+    if (!make_slab_ray(o, o, d, d, ray))
         leaf(Child{0, static_cast<std::uint32_t>(items_.size())}, t1);
     else if (guarded(o, o))
         traverse<kNearestFirst, true>(ray, t1, leaf);
@@ -494,7 +320,7 @@ void Bvh<Real, Width>::traverse(const V& origin, const V& direction, C t1, Leaf 
 // node met by one child's box only costs no stack traffic (as Embree's traversal).
 template <typename Real, int Width>
 template <bool kNearestFirst, bool kGuarded, typename Leaf>
-void Bvh<Real, Width>::traverse(const SlabRay& ray, C t1, Leaf leaf) const {
+void Bvh<Real, Width>::traverse(const SlabRay<C>& ray, C t1, Leaf leaf) const {
     StackEntry stack[kStack];  // NOLINT(cppcoreguidelines-pro-type-member-init): written before read
     int size = 0;
     Child current = root_;
@@ -545,7 +371,7 @@ Bvh<Real, Width>::Bvh(std::vector<Ellipsoid<Real>> ellipsoids, unsigned threads)
         const Ellipsoid<Real>& e = ellipsoids[i];
         const C s[3] = {abs(C(e.scale.x)), abs(C(e.scale.y)), abs(C(e.scale.z))};
         BuildItem<C>& item = items[i];
-        item.box = item_box(e);
+        item.box = inflated_box<C>(e);
         item.centre[0] = C(e.centre.x), item.centre[1] = C(e.centre.y), item.centre[2] = C(e.centre.z);
         const C guard = std::min({s[0], s[1], s[2]}) * reach / 2;
         item.guard = guard <= std::numeric_limits<C>::max() ? guard : std::numeric_limits<C>::max();
@@ -559,63 +385,11 @@ Bvh<Real, Width>::Bvh(std::vector<Ellipsoid<Real>> ellipsoids, unsigned threads)
         index_.push_back(item.index);
     }
     std::vector<BuildItem<C>>().swap(items);  // not needed past this: a lower peak
-    // The ellipsoids into leaf order in place, cycle by cycle (no second copy).
-    std::vector<bool> placed(ellipsoids.size());
-    for (std::size_t k = 0; k < ellipsoids.size(); ++k) {
-        if (placed[k]) continue;
-        const Ellipsoid<Real> first = ellipsoids[k];
-        std::size_t j = k;
-        for (; index_[j] != k; j = index_[j]) ellipsoids[j] = ellipsoids[index_[j]], placed[j] = true;
-        ellipsoids[j] = first, placed[j] = true;
-    }
+    permute_in_place(ellipsoids, index_);     // into leaf order, without a second copy
     items_ = std::move(ellipsoids);
     if (binary.empty()) return;
     bounds_ = binary[0].box, guard_ = binary[0].guard;
-    // At most one wide node per inner binary node: reserved (pages that are never
-    // written cost no memory), so that the list is not copied as it grows.
-    nodes_.reserve(binary.size() / 2);
-    if (binary[0].count > 0)
-        root_ = {binary[0].first, binary[0].count};
-    else
-        root_ = {collapse(binary, 0), 0};
-}
-
-// The wide node for binary inner node b: its children, where an inner one with the
-// largest box is replaced by its own two children until there are Width (the "pull up
-// the largest" rule of Embree's BVH4 builders).
-template <typename Real, int Width>
-std::uint32_t Bvh<Real, Width>::collapse(const std::vector<BuildNode<C>>& binary, std::uint32_t b) {
-    std::uint32_t lanes[Width] = {binary[b].first, binary[b].first + 1};
-    int used = 2;
-    while (used < Width) {
-        int widest = -1;
-        for (int k = 0; k < used; ++k)
-            if (binary[lanes[k]].count == 0 &&
-                (widest < 0 || binary[lanes[k]].box.half_area() > binary[lanes[widest]].box.half_area()))
-                widest = k;
-        if (widest < 0) break;
-        const std::uint32_t inner = lanes[widest];
-        lanes[widest] = binary[inner].first;
-        lanes[used++] = binary[inner].first + 1;
-    }
-    const auto index = static_cast<std::uint32_t>(nodes_.size());
-    nodes_.emplace_back();
-    Node node{};
-    for (int k = 0; k < Width; ++k) {  // unused lanes: an empty box, not in used
-        for (int a = 0; a < 3; ++a)
-            node.box[0][a][k] = std::numeric_limits<C>::max(), node.box[1][a][k] = -node.box[0][a][k];
-        node.guard[k] = std::numeric_limits<C>::max();
-    }
-    node.used = (1U << used) - 1;
-    for (int k = 0; k < used; ++k) {
-        const BuildNode<C>& child = binary[lanes[k]];
-        for (int a = 0; a < 3; ++a) node.box[0][a][k] = child.box.lo[a], node.box[1][a][k] = child.box.hi[a];
-        node.guard[k] = child.guard;
-        node.child[k] =
-            child.count > 0 ? Child{child.first, child.count} : Child{collapse(binary, lanes[k]), 0};
-    }
-    nodes_[index] = node;
-    return index;
+    root_ = collapse<Width>(binary, nodes_);
 }
 
 }  // namespace rt

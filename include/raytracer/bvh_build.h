@@ -1,14 +1,16 @@
-// The binary tree that bvh.h collapses into wide nodes: built top-down over boxes with
-// binned surface-area-heuristic splits (I. Wald, "On fast Construction of SAH-based
-// Bounding Volume Hierarchies", IEEE Symposium on Interactive Ray Tracing 2007): per
-// node, the boxes' centres are put into kBins bins along each axis and the cheapest of
-// the kBins - 1 planes between bins is taken, O(N) per level, O(N log N) in all.
+// The tree of bvh.h, built in two steps. First a binary tree, top-down over the items'
+// boxes with binned surface-area-heuristic splits (I. Wald, "On fast Construction of
+// SAH-based Bounding Volume Hierarchies", IEEE Symposium on Interactive Ray Tracing
+// 2007): per node, the boxes' centres are put into kBins bins along their widest axis
+// and the cheapest of the kBins - 1 planes between bins is taken, O(N) per level,
+// O(N log N) in all. Then collapse() makes nodes of Width children of it.
 #pragma once
 
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <exception>
+#include <limits>
 #include <thread>
 #include <vector>
 
@@ -230,5 +232,87 @@ private:
     std::vector<BuildNode<C>> nodes_;
     unsigned threads_ = 1;
 };
+
+// A child of a wide node: the wide node `first` when count is 0, else the leaf of items
+// [first, first + count).
+struct WideChild {  // trivial: the traversal's stack is not initialised
+    std::uint32_t first, count;
+};
+// Width children; their boxes (side 0 the low corner, 1 the high one), by axis and lane,
+// and guards: a child may be culled for a ray whose origin lies within this max-norm
+// distance of each of its corners (bvh.h).
+template <typename C, int Width>
+struct WideNode {
+    C box[2][3][Width];
+    C guard[Width];
+    WideChild child[Width];
+    unsigned used;  // bit k for each child k in use
+};
+
+namespace detail {
+// The wide node for binary inner node b, appended to nodes: its children, where an inner
+// one with the largest box is replaced by its own two children until there are Width
+// (the "pull up the largest" rule of Embree's BVH4 builders).
+template <int Width, typename C>
+std::uint32_t collapse_node(const std::vector<BuildNode<C>>& binary, std::uint32_t b,
+                            std::vector<WideNode<C, Width>>& nodes) {
+    std::uint32_t lanes[Width] = {binary[b].first, binary[b].first + 1};
+    int used = 2;
+    while (used < Width) {
+        int widest = -1;
+        for (int k = 0; k < used; ++k)
+            if (binary[lanes[k]].count == 0 &&
+                (widest < 0 || binary[lanes[k]].box.half_area() > binary[lanes[widest]].box.half_area()))
+                widest = k;
+        if (widest < 0) break;
+        const std::uint32_t inner = lanes[widest];
+        lanes[widest] = binary[inner].first;
+        lanes[used++] = binary[inner].first + 1;
+    }
+    const auto index = static_cast<std::uint32_t>(nodes.size());
+    nodes.emplace_back();
+    WideNode<C, Width> node{};
+    for (int k = 0; k < Width; ++k) {  // unused lanes: an empty box, not in used
+        for (int a = 0; a < 3; ++a)
+            node.box[0][a][k] = std::numeric_limits<C>::max(), node.box[1][a][k] = -node.box[0][a][k];
+        node.guard[k] = std::numeric_limits<C>::max();
+    }
+    node.used = (1U << used) - 1;
+    for (int k = 0; k < used; ++k) {
+        const BuildNode<C>& child = binary[lanes[k]];
+        for (int a = 0; a < 3; ++a) node.box[0][a][k] = child.box.lo[a], node.box[1][a][k] = child.box.hi[a];
+        node.guard[k] = child.guard;
+        node.child[k] = child.count > 0 ? WideChild{child.first, child.count}
+                                        : WideChild{collapse_node<Width>(binary, lanes[k], nodes), 0};
+    }
+    nodes[index] = node;
+    return index;
+}
+}  // namespace detail
+
+// The binary tree (non-empty; root binary[0]) as wide nodes of Width children, into
+// nodes: the root, a leaf or nodes[first].
+template <int Width, typename C>
+WideChild collapse(const std::vector<BuildNode<C>>& binary, std::vector<WideNode<C, Width>>& nodes) {
+    if (binary[0].count > 0) return {binary[0].first, binary[0].count};
+    // At most one wide node per inner binary node: reserved (pages that are never
+    // written cost no memory), so that the list is not copied as it grows.
+    nodes.reserve(binary.size() / 2);
+    return {detail::collapse_node<Width>(binary, 0, nodes), 0};
+}
+
+// v[k] becomes v[from[k]] for each k (from a permutation), cycle by cycle in place: no
+// second copy of v.
+template <typename T>
+void permute_in_place(std::vector<T>& v, const std::vector<std::uint32_t>& from) {
+    std::vector<bool> placed(v.size());
+    for (std::size_t k = 0; k < v.size(); ++k) {
+        if (placed[k]) continue;
+        const T first = v[k];
+        std::size_t j = k;
+        for (; from[j] != k; j = from[j]) v[j] = v[from[j]], placed[j] = true;
+        v[j] = first, placed[j] = true;
+    }
+}
 
 }  // namespace rt

@@ -1,0 +1,179 @@
+// The ray/box arithmetic of the acceleration layer (bvh.h): a ray, or a bundle of rays,
+// as the slab test takes it; the slab test of one box; an ellipsoid's inflated box; and
+// the rays of a bundle's lanes, tried against an ellipsoid's box and then exactly.
+// bvh.h states why each cull is exact.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "raytracer/bit_scan.h"
+#include "raytracer/bvh_build.h"
+#include "raytracer/compiler.h"
+#include "raytracer/ellipsoid.h"
+#include "raytracer/intersect_lanes.h"
+#include "raytracer/scene_precision.h"
+#include "raytracer/vec3.h"
+
+namespace rt {
+
+// Each ellipsoid's box is grown by this much of each scale: a gap of 1e-3 in the unit
+// sphere's space, as the flat sweep's bounding spheres (sphere_bounds.h).
+inline constexpr double kBoxInflation = 1e-3;
+
+// A ray, or a bundle of rays, as the slab tests take it: per axis, two edges that
+// hold the bundle's points at every t in [0, t1], the lower o_lo + t d_lo and the
+// upper o_hi + t d_hi (one ray: both are the ray; interval arithmetic, as in
+// S. Boulos et al., "Geometric and Arithmetic Culling Methods for Entire Ray
+// Packets", University of Utah UUCS-06-010, 2006). A box [lo, hi] can be met only
+// where the upper edge is >= lo and the lower edge <= hi: the upper edge passes lo at
+// p = (lo - o_hi) / d_hi, from where on it is above lo if d_hi >= 0 (an entry), up
+// to where if not (an exit); the lower edge passes hi at q = (hi - o_lo) / d_lo, an
+// exit if d_lo >= 0, else an entry. The slab test takes [min, max] of p and q, which
+// holds that interval where one is an entry and the other an exit (for one ray, the
+// slab's two ends); where both are entries q is set to +inf, where both are exits p
+// to -inf. An edge of zero slope exactly on a box's plane gives 0 * inf = NaN, which
+// may cull the box: every ray of the bundle then stays on or outside that face, so
+// outside the box's gap, where no root can be (as for one ray, bvh.h).
+template <typename C>
+struct SlabRay {
+    C lo_from[3], lo_inv[3];  // for the box's low planes: o_hi, 1 / d_hi
+    C hi_from[3], hi_inv[3];  // for its high planes: o_lo, 1 / d_lo
+};
+
+// The slab ray of a bundle's edges, or false where a direction has a component
+// without a finite inverse (a subnormal scene; such a ray is tried against every
+// ellipsoid: an infinite inverse makes a slab's t infinite where it is finite).
+template <typename C>
+bool make_slab_ray(const C (&o_lo)[3], const C (&o_hi)[3], const C (&d_lo)[3], const C (&d_hi)[3],
+                   SlabRay<C>& ray) {
+    constexpr C kInf = std::numeric_limits<C>::infinity();
+    for (int a = 0; a < 3; ++a) {
+        for (const C d : {d_lo[a], d_hi[a]})
+            if (d != 0 && !(std::abs(1 / d) <= std::numeric_limits<C>::max())) return false;
+        // -0 as +0, so that a zero's sign follows the cases below.
+        ray.lo_from[a] = o_hi[a], ray.lo_inv[a] = 1 / (d_hi[a] == 0 ? C(0) : d_hi[a]);
+        ray.hi_from[a] = o_lo[a], ray.hi_inv[a] = 1 / (d_lo[a] == 0 ? C(0) : d_lo[a]);
+        if (d_lo[a] < 0 && d_hi[a] >= 0) ray.hi_from[a] = -kInf, ray.hi_inv[a] = 1;  // q = +inf
+        if (d_lo[a] >= 0 && d_hi[a] < 0) ray.lo_from[a] = kInf, ray.lo_inv[a] = 1;   // p = -inf
+    }
+    return true;
+}
+
+// [enter, leave] clipped to one axis's slab, given its p and q (SlabRay). A slab's end is
+// computed with at most 3 roundings, so the far end is widened by 2 gamma(3) (pbrt-v4,
+// section 6.8.2).
+template <typename C>
+RT_ALWAYS_INLINE void clip_to_slab(C p, C q, C& enter, C& leave) {
+    constexpr C kEps = std::numeric_limits<C>::epsilon() / 2;
+    constexpr C kWiden = 1 + 2 * (3 * kEps / (1 - 3 * kEps));
+    const C first = p < q ? p : q, last = (p < q ? q : p) * kWiden;
+    enter = first > enter ? first : enter;
+    leave = last < leave ? last : leave;
+}
+
+// Whether a ray from within every guard distance, or a bundle of them, may meet the
+// box within [0, t1]: Bvh::meets() for one box.
+template <typename C>
+bool meets_box(const SlabRay<C>& ray, const BuildBox<C>& box, C t1) {
+    C enter = 0, leave = t1;
+    for (int a = 0; a < 3; ++a)
+        clip_to_slab((box.lo[a] - ray.lo_from[a]) * ray.lo_inv[a],
+                     (box.hi[a] - ray.hi_from[a]) * ray.hi_inv[a], enter, leave);
+    return enter <= leave;
+}
+
+// An ellipsoid's box: grown by kBoxInflation of each scale, by 4 ulps of the centre
+// too, so that the box's own rounding stays inside the gap even for a small
+// ellipsoid far from the origin, and by the smallest subnormal, as a scale below 500
+// of them is its own product with 1 + kBoxInflation: a gap of one ulp is still
+// > kBoxInflation of it. Computed where a leaf is visited, not stored: 48 bytes an
+// ellipsoid would take random 100k's prepared peak past 64 MiB.
+template <typename C, typename Real>
+BuildBox<C> inflated_box(const Ellipsoid<Real>& e) {
+    using std::abs;
+    const C c[3] = {C(e.centre.x), C(e.centre.y), C(e.centre.z)};
+    const C s[3] = {abs(C(e.scale.x)), abs(C(e.scale.y)), abs(C(e.scale.z))};
+    BuildBox<C> box;
+    for (int a = 0; a < 3; ++a) {
+        const C half = s[a] * (1 + C(kBoxInflation)) + abs(c[a]) * 4 * std::numeric_limits<C>::epsilon() +
+                       std::numeric_limits<C>::denorm_min();
+        box.lo[a] = c[a] - half, box.hi[a] = c[a] + half;
+    }
+    return box;
+}
+
+// The rays of a bundle's lanes, by axis and lane, each to be met within [0, t1[k].
+// Written by set() alone, every lane: not zeroed first (a few KB a tile).
+template <typename Real, int N>
+struct LaneRays {
+    using C = AtLeastDouble<Real>;
+    using V = Vec3<Real>;
+
+    Real from[3][N], along[3][N];  // the rays as given, for intersect_lanes()
+    C inv[3][N], t1[N];            // for the slab tests
+    unsigned unculled;             // lanes always met: a direction without a finite inverse
+
+    // Lane k of lanes: origins[k] + t directions[k] for t in [0, end]; the other lanes
+    // zero (their answers are dropped).
+    void set(const V (&origins)[N], const V (&directions)[N], unsigned lanes, C end) {
+        unculled = 0;
+        for (int k = 0; k < N; ++k) {
+            if ((lanes >> k & 1U) == 0) {
+                t1[k] = 0;
+                for (int a = 0; a < 3; ++a) from[a][k] = along[a][k] = 0, inv[a][k] = 0;
+                continue;
+            }
+            const V& o = origins[k];
+            const V& d = directions[k];
+            const C along_c[3] = {C(d.x), C(d.y), C(d.z)};
+            t1[k] = end;
+            from[0][k] = o.x, from[1][k] = o.y, from[2][k] = o.z;
+            along[0][k] = d.x, along[1][k] = d.y, along[2][k] = d.z;
+            for (int a = 0; a < 3; ++a) {
+                inv[a][k] = 1 / along_c[a];
+                if (along_c[a] != 0 && !(std::abs(inv[a][k]) <= std::numeric_limits<C>::max()))
+                    unculled |= 1U << k;
+            }
+        }
+    }
+    // Which of lanes may meet e's box; where some do, every lane's roots with e, in
+    // one vector loop (intersect()'s, bit for bit).
+    unsigned roots(const Ellipsoid<Real>& e, unsigned lanes, Real (&hit)[N], Real (&near)[N],
+                   Real (&far)[N]) const {
+        const unsigned met = lanes & meeting(inflated_box<C>(e));
+        if (met != 0)
+            intersect_lanes<N>(e, from[0], from[1], from[2], along[0], along[1], along[2], hit, near, far);
+        return met;
+    }
+    // The lanes whose guarded ray may meet the box, all lanes in one vector loop.
+    unsigned meeting(const BuildBox<C>& box) const {
+        C enter[N], leave[N];
+        for (int k = 0; k < N; ++k) enter[k] = 0, leave[k] = t1[k];
+        for (int a = 0; a < 3; ++a) {
+            const C lo = box.lo[a], hi = box.hi[a];
+            RT_VECTOR_LOOP
+            for (int k = 0; k < N; ++k)
+                clip_to_slab((lo - C(from[a][k])) * inv[a][k], (hi - C(from[a][k])) * inv[a][k], enter[k],
+                             leave[k]);
+        }
+        unsigned mask = unculled;
+        RT_VECTOR_LOOP
+        for (int k = 0; k < N; ++k) mask |= enter[k] <= leave[k] ? 1U << k : 0U;
+        return mask;
+    }
+};
+
+// Per axis, the least and the greatest of v[k] over the lanes.
+template <typename C, typename Real, int N>
+void bounds_of(const Vec3<Real> (&v)[N], unsigned lanes, C (&lo)[3], C (&hi)[3]) {
+    for (int a = 0; a < 3; ++a) lo[a] = std::numeric_limits<C>::infinity(), hi[a] = -lo[a];
+    for (unsigned m = lanes; m != 0; m &= m - 1) {
+        const Vec3<Real>& p = v[lowest_bit(m)];
+        const C c[3] = {C(p.x), C(p.y), C(p.z)};
+        for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], c[a]), hi[a] = std::max(hi[a], c[a]);
+    }
+}
+
+}  // namespace rt
