@@ -15,6 +15,7 @@
 
 #include "raytracer/helper_pool.h"
 #include "raytracer/scene_error.h"
+#include "raytracer/scene_lines.h"
 #include "raytracer/scene_numbers.h"
 #include "raytracer/shown.h"
 
@@ -66,47 +67,6 @@ std::string keyword_list() {
     std::string text;
     for (const Statement& s : statements()) text += (text.empty() ? "" : ", ") + std::string(s.keyword);
     return text;
-}
-
-// What each byte is to split_line(): part of a token, a field separator, the end of a
-// line (CR, LF) or NUL, which never occurs in a text file. One table look-up a byte.
-enum ByteKind : unsigned char { kToken, kSeparator, kLineEnd, kNul };
-struct ByteKinds {
-    unsigned char of[256] = {};
-    constexpr ByteKinds() {
-        set(" \t\v\f", kSeparator), set("\n\r", kLineEnd);
-        of[0] = kNul;
-    }
-    constexpr void set(const char* bytes, ByteKind kind) {
-        for (; *bytes != 0; ++bytes) of[static_cast<unsigned char>(*bytes)] = kind;
-    }
-};
-constexpr ByteKinds kByteKinds;
-unsigned char kind_of(char c) { return kByteKinds.of[static_cast<unsigned char>(c)]; }
-
-// Splits the first line of text into tokens (reused from line to line: no allocation
-// per line) and returns where it ends: at its first CR or LF, or at the end; npos if it
-// holds a NUL byte.
-std::size_t split_line(std::string_view text, std::vector<std::string_view>& tokens) {
-    tokens.clear();
-    std::size_t i = 0;
-    const std::size_t n = text.size();
-    for (;;) {
-        while (i < n && kind_of(text[i]) == kSeparator) ++i;
-        if (i == n || kind_of(text[i]) == kLineEnd) return i;
-        if (kind_of(text[i]) == kNul) return std::string_view::npos;
-        const std::size_t start = i;
-        while (i < n && kind_of(text[i]) == kToken) ++i;
-        tokens.push_back(text.substr(start, i - start));
-    }
-}
-
-// Where the next line starts after a line that ends at end: past LF, CR LF or a lone CR
-// (old Mac files), each of which ends one line.
-std::size_t next_line(std::string_view text, std::size_t end) {
-    std::size_t next = end == text.size() ? end : end + 1;
-    if (end < text.size() && text[end] == '\r' && next < text.size() && text[next] == '\n') ++next;
-    return next;
 }
 
 // A mistake: its line (0: the file as a whole) and what is wrong. A piece of the text
