@@ -2,37 +2,18 @@
 
 #include <algorithm>
 #include <atomic>
-#include <cmath>
 #include <utility>
 #include <vector>
 
-#include "raytracer/brute_force.h"
-#include "raytracer/bvh.h"
+#include "raytracer/accel/bvh.h"
+#include "raytracer/accel/whitted_tiles.h"
 #include "raytracer/helper_pool.h"
+#include "raytracer/reference/brute_force.h"
+#include "raytracer/reference/whitted.h"
 #include "raytracer/render.h"
 #include "raytracer/row_ring.h"
-#include "raytracer/whitted.h"
-#include "raytracer/whitted_tiles.h"
 
 namespace rt {
-
-#ifndef RAYTRACER_EXTRA_PRECISIONS  // (see the end of render.cpp)
-bool lengths_fit_the_flat_sweep(const Scene& scene) {
-    auto fits = [](double x) {
-        const double a = std::abs(x);
-        return a == 0 || (a >= kFlatSweepSmallest && a <= kFlatSweepLargest);
-    };
-    auto all_fit = [&](const Vec3<double>& v) { return fits(v.x) && fits(v.y) && fits(v.z); };
-    if (!(fits(scene.near_plane) && fits(scene.left) && fits(scene.right) && fits(scene.bottom) &&
-          fits(scene.top)))
-        return false;
-    for (const SphereSpec& s : scene.spheres)
-        if (!all_fit(s.centre) || !all_fit(s.scale)) return false;
-    for (const LightSpec& l : scene.lights)
-        if (!all_fit(l.position)) return false;
-    return true;
-}
-#endif
 
 namespace {
 // The threads a render uses: as asked (0: all cores), at most one per row.

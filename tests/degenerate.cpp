@@ -16,11 +16,11 @@
 #include <string>
 #include <vector>
 
+#include "raytracer/flat_sweep/tracer.h"
 #include "raytracer/image.h"
 #include "raytracer/parser.h"
 #include "raytracer/ppm.h"
 #include "raytracer/render.h"
-#include "raytracer/tracer.h"
 #include "run_program.h"
 
 namespace fs = std::filesystem;

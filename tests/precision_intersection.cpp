@@ -1,12 +1,12 @@
-// The intersection's error behaviour (include/raytracer/ellipsoid.h) in each precision:
+// The intersection's error behaviour (include/raytracer/reference/ellipsoid.h) in each precision:
 // tangency, far and thin ellipsoids, roots without cancellation, inside or outside.
 #include <cfloat>
 #include <cmath>
 
 #include "check.h"
-#include "raytracer/ellipsoid.h"
-#include "raytracer/spec_rules.h"
-#include "raytracer/tracer.h"
+#include "raytracer/flat_sweep/tracer.h"
+#include "raytracer/reference/ellipsoid.h"
+#include "raytracer/reference/spec_rules.h"
 
 namespace {
 

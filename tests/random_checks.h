@@ -6,9 +6,9 @@
 #include <random>
 #include <vector>
 
-#include "raytracer/ellipsoid.h"
+#include "raytracer/reference/ellipsoid.h"
+#include "raytracer/reference/spec_rules.h"
 #include "raytracer/scene.h"
-#include "raytracer/spec_rules.h"
 #include "raytracer/vec3.h"
 
 // Uniform in [lo, hi) from the raw generator output: the same numbers on every

@@ -11,7 +11,7 @@
 
 #include "check.h"
 #include "random_checks.h"
-#include "raytracer/direction_grid.h"
+#include "raytracer/flat_sweep/direction_grid.h"
 
 namespace {
 

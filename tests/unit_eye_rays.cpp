@@ -10,9 +10,9 @@
 
 #include "check.h"
 #include "random_checks.h"
-#include "raytracer/ellipsoid.h"
-#include "raytracer/eye_rays.h"
-#include "raytracer/tracer.h"
+#include "raytracer/flat_sweep/eye_rays.h"
+#include "raytracer/flat_sweep/tracer.h"
+#include "raytracer/reference/ellipsoid.h"
 
 namespace {
 

@@ -15,10 +15,10 @@
 
 #include "check.h"
 #include "random_checks.h"
-#include "raytracer/ellipsoid.h"
-#include "raytracer/intersect_lanes.h"
+#include "raytracer/accel/intersect_lanes.h"
+#include "raytracer/flat_sweep/tracer.h"
+#include "raytracer/reference/ellipsoid.h"
 #include "raytracer/scene.h"
-#include "raytracer/tracer.h"
 
 namespace {
 

@@ -1,7 +1,7 @@
 // Ray/ellipsoid intersection: both roots, the near-plane cut, tangency, misses.
 #include "check.h"
-#include "raytracer/ellipsoid.h"
-#include "raytracer/tracer.h"
+#include "raytracer/flat_sweep/tracer.h"
+#include "raytracer/reference/ellipsoid.h"
 
 namespace {
 

@@ -14,9 +14,9 @@
 
 #include "check.h"
 #include "random_checks.h"
-#include "raytracer/ellipsoid.h"
-#include "raytracer/light_cones.h"
-#include "raytracer/sphere_bounds.h"
+#include "raytracer/flat_sweep/light_cones.h"
+#include "raytracer/flat_sweep/sphere_bounds.h"
+#include "raytracer/reference/ellipsoid.h"
 
 namespace {
 

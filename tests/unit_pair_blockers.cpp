@@ -11,10 +11,10 @@
 
 #include "check.h"
 #include "random_checks.h"
-#include "raytracer/ellipsoid.h"
-#include "raytracer/enclosures.h"
-#include "raytracer/pair_blockers.h"
-#include "raytracer/sphere_bounds.h"
+#include "raytracer/flat_sweep/enclosures.h"
+#include "raytracer/flat_sweep/pair_blockers.h"
+#include "raytracer/flat_sweep/sphere_bounds.h"
+#include "raytracer/reference/ellipsoid.h"
 
 TEST(pair_blockers_leave_out_only_ellipsoids_that_cannot_block) {
     long long wrong = 0, left_out = 0, pairs = 0, blocked = 0;

@@ -11,7 +11,7 @@
 
 #include "check.h"
 #include "random_checks.h"
-#include "raytracer/ray_cone.h"
+#include "raytracer/flat_sweep/ray_cone.h"
 
 namespace {
 

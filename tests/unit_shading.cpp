@@ -7,9 +7,9 @@
 #include <random>
 
 #include "check.h"
+#include "raytracer/flat_sweep/tracer.h"
 #include "raytracer/image.h"
-#include "raytracer/power.h"
-#include "raytracer/tracer.h"
+#include "raytracer/reference/power.h"
 
 namespace {
 

@@ -12,10 +12,10 @@
 
 #include "check.h"
 #include "random_checks.h"
-#include "raytracer/ellipsoid.h"
-#include "raytracer/enclosures.h"
-#include "raytracer/hit_packet.h"
-#include "raytracer/shadow_prefilter.h"
+#include "raytracer/flat_sweep/enclosures.h"
+#include "raytracer/flat_sweep/hit_packet.h"
+#include "raytracer/flat_sweep/shadow_prefilter.h"
+#include "raytracer/reference/ellipsoid.h"
 
 namespace {
 

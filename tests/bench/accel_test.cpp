@@ -18,12 +18,13 @@
 
 #include "check.h"
 #include "random_checks.h"
-#include "raytracer/brute_force.h"
-#include "raytracer/bvh.h"
+#include "raytracer/accel/bvh.h"
+#include "raytracer/flat_sweep/render_flat_sweep.h"
 #include "raytracer/parser.h"
+#include "raytracer/reference/brute_force.h"
+#include "raytracer/reference/whitted.h"
 #include "raytracer/render.h"
 #include "raytracer/render_whitted.h"
-#include "raytracer/whitted.h"
 #include "scale_scenes.h"
 #include "stress_scenes.h"
 

@@ -9,8 +9,8 @@
 
 #include "check.h"
 #include "random_checks.h"
-#include "raytracer/brute_force.h"
-#include "raytracer/bvh.h"
+#include "raytracer/accel/bvh.h"
+#include "raytracer/reference/brute_force.h"
 #include "stress_scenes.h"
 
 namespace {

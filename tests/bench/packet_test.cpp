@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "check.h"
-#include "raytracer/tracer.h"
+#include "raytracer/flat_sweep/tracer.h"
 #include "stress_scenes.h"
 
 namespace {

@@ -8,11 +8,11 @@
 #include <cmath>
 #include <limits>
 
+#include "raytracer/accel/bvh_build.h"
+#include "raytracer/accel/intersect_lanes.h"
 #include "raytracer/bit_scan.h"
-#include "raytracer/bvh_build.h"
 #include "raytracer/compiler.h"
-#include "raytracer/ellipsoid.h"
-#include "raytracer/intersect_lanes.h"
+#include "raytracer/reference/ellipsoid.h"
 #include "raytracer/scene_precision.h"
 #include "raytracer/vec3.h"
 

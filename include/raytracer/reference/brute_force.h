@@ -7,8 +7,8 @@
 #include <utility>
 #include <vector>
 
-#include "raytracer/ellipsoid.h"
-#include "raytracer/spec_rules.h"
+#include "raytracer/reference/ellipsoid.h"
+#include "raytracer/reference/spec_rules.h"
 #include "raytracer/vec3.h"
 
 namespace rt {

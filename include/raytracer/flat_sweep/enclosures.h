@@ -18,7 +18,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "raytracer/ellipsoid.h"
+#include "raytracer/reference/ellipsoid.h"
 #include "raytracer/scene_precision.h"
 #include "raytracer/vec3.h"
 

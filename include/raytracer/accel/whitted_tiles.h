@@ -10,8 +10,8 @@
 #include <cstdint>
 
 #include "raytracer/bit_scan.h"
-#include "raytracer/spec_rules.h"
-#include "raytracer/whitted.h"
+#include "raytracer/reference/spec_rules.h"
+#include "raytracer/reference/whitted.h"
 
 namespace rt {
 

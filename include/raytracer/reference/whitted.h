@@ -9,11 +9,11 @@
 #include <utility>
 #include <vector>
 
-#include "raytracer/ellipsoid.h"
 #include "raytracer/image.h"
-#include "raytracer/power.h"
+#include "raytracer/reference/ellipsoid.h"
+#include "raytracer/reference/power.h"
+#include "raytracer/reference/spec_rules.h"
 #include "raytracer/scene.h"
-#include "raytracer/spec_rules.h"
 #include "raytracer/vec3.h"
 
 namespace rt {

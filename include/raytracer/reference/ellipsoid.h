@@ -5,8 +5,8 @@
 
 #include <vector>
 
+#include "raytracer/reference/unit_sphere_roots.h"
 #include "raytracer/scene.h"
-#include "raytracer/unit_sphere_roots.h"
 #include "raytracer/vec3.h"
 
 namespace rt {

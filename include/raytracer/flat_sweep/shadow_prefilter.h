@@ -19,9 +19,9 @@
 #include <type_traits>
 #include <vector>
 
-#include "raytracer/ellipsoid.h"
+#include "raytracer/reference/ellipsoid.h"
+#include "raytracer/reference/spec_rules.h"
 #include "raytracer/scene_precision.h"
-#include "raytracer/spec_rules.h"
 #include "raytracer/vec3.h"
 
 namespace rt {

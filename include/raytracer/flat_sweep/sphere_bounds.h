@@ -28,9 +28,9 @@
 #include <vector>
 
 #include "raytracer/compiler.h"
-#include "raytracer/direction_grid.h"
-#include "raytracer/ellipsoid.h"
-#include "raytracer/ray_cone.h"
+#include "raytracer/flat_sweep/direction_grid.h"
+#include "raytracer/flat_sweep/ray_cone.h"
+#include "raytracer/reference/ellipsoid.h"
 #include "raytracer/scene_precision.h"
 #include "raytracer/vec3.h"
 

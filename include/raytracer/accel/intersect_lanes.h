@@ -11,8 +11,8 @@
 #pragma once
 
 #include "raytracer/compiler.h"
-#include "raytracer/ellipsoid.h"
-#include "raytracer/unit_sphere_roots.h"
+#include "raytracer/reference/ellipsoid.h"
+#include "raytracer/reference/unit_sphere_roots.h"
 
 namespace rt {
 

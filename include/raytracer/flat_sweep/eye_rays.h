@@ -21,8 +21,8 @@
 #include <limits>
 #include <vector>
 
-#include "raytracer/ellipsoid.h"
-#include "raytracer/unit_sphere_roots.h"
+#include "raytracer/reference/ellipsoid.h"
+#include "raytracer/reference/unit_sphere_roots.h"
 #include "raytracer/vec3.h"
 
 namespace rt {

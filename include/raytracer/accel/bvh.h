@@ -38,13 +38,13 @@
 #include <utility>
 #include <vector>
 
+#include "raytracer/accel/bvh_build.h"
+#include "raytracer/accel/slab_rays.h"
 #include "raytracer/bit_scan.h"
-#include "raytracer/bvh_build.h"
 #include "raytracer/compiler.h"
-#include "raytracer/ellipsoid.h"
+#include "raytracer/reference/ellipsoid.h"
+#include "raytracer/reference/spec_rules.h"
 #include "raytracer/scene_precision.h"
-#include "raytracer/slab_rays.h"
-#include "raytracer/spec_rules.h"
 #include "raytracer/vec3.h"
 
 namespace rt {

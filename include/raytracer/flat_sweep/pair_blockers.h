@@ -27,8 +27,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "raytracer/direction_grid.h"
-#include "raytracer/ellipsoid.h"
+#include "raytracer/flat_sweep/direction_grid.h"
+#include "raytracer/reference/ellipsoid.h"
 #include "raytracer/scene_precision.h"
 
 namespace rt {

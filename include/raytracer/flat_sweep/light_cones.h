@@ -33,7 +33,7 @@
 #include <vector>
 
 #include "raytracer/compiler.h"
-#include "raytracer/direction_grid.h"
+#include "raytracer/flat_sweep/direction_grid.h"
 #include "raytracer/vec3.h"
 
 namespace rt {

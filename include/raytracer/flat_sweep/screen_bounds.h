@@ -19,7 +19,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "raytracer/direction_grid.h"
+#include "raytracer/flat_sweep/direction_grid.h"
 #include "raytracer/scene.h"
 #include "raytracer/vec3.h"
 

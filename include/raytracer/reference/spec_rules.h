@@ -7,7 +7,7 @@
 
 #include <cstdint>
 
-#include "raytracer/ellipsoid.h"
+#include "raytracer/reference/ellipsoid.h"
 #include "raytracer/scene_precision.h"
 #include "raytracer/vec3.h"
 

@@ -1,0 +1,45 @@
+// The flat sweep: every ellipsoid culled by its bounding sphere, eye rays by row, hits
+// shaded in vector packets (tracer.h and the headers beside it). It renders the bytes
+// of the reference path (whitted.h) faster for a handful of ellipsoids, and render_to()
+// takes it within the range below; the tree (bvh.h) takes every other scene.
+#pragma once
+
+#include <cstddef>
+
+#include "raytracer/row_sink.h"
+#include "raytracer/scene.h"
+
+namespace rt {
+
+// Up to this many ellipsoids the flat sweep is faster than the tree. Whole process, one thread, CPU time,
+// medians of 5: random scenes (scale_scenes.h) of 300 / 500 / 700 / 1,000 ellipsoids 0.03 / 0.04 / 0.06 /
+// 0.07 s flat against 0.07 / 0.09 / 0.10 / 0.10 s in the tree; sphereflake level 3
+// (821) 0.07 s flat against 0.05 s in the tree; past a few thousand the flat sweep's tables stop at
+// their limits and it is many times slower (random 4,000: 3.9 s).
+inline constexpr std::size_t kFlatSweepEllipsoids = 512;
+// and while ellipsoids x lights stay below this: the flat sweep keeps tables per
+// ellipsoid and light (about 100 bytes a pair), the tree nothing per pair.
+inline constexpr std::size_t kFlatSweepPairs = 65536;
+
+// The flat sweep's shortcuts multiply squared lengths (4th powers of the scene's
+// numbers), which overflow or underflow past about 1e+-77: they are exact while every
+// length of the scene lies within [1e-60, 1e60] or is 0 (measured: scenes scaled by
+// 1e+-80 rendered exactly, by 1e+-90 did not). The tree is exact at any scale.
+inline constexpr double kFlatSweepSmallest = 1e-60, kFlatSweepLargest = 1e60;
+
+// Whether every length of the scene (its window, centres, scales and lights) is within
+// the flat sweep's range.
+bool lengths_fit_the_flat_sweep(const Scene& scene);
+
+// Whether render_to() takes the tree rather than the flat sweep for the scene.
+inline bool takes_the_tree(const Scene& scene) {
+    const std::size_t ellipsoids = scene.spheres.size();
+    return ellipsoids > kFlatSweepEllipsoids || ellipsoids * scene.lights.size() > kFlatSweepPairs ||
+           !lengths_fit_the_flat_sweep(scene);
+}
+
+// Instantiated for float, double and long double; threads = 0: see render_to().
+template <typename Real>
+void render_flat_sweep_to(const Scene& scene, RowSink& sink, unsigned threads);
+
+}  // namespace rt

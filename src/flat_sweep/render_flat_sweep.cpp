@@ -1,0 +1,271 @@
+// The flat sweep (flat_sweep/render_flat_sweep.h): eye rays by row, hits shaded in
+// vector packets gathered in 4x4 tiles, rows to the file as they finish.
+#include "raytracer/flat_sweep/render_flat_sweep.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <vector>
+
+#include "raytracer/flat_sweep/eye_rays.h"
+#include "raytracer/flat_sweep/tracer.h"
+#include "raytracer/helper_pool.h"
+#include "raytracer/render.h"
+#include "raytracer/row_ring.h"
+
+namespace rt {
+
+#ifndef RAYTRACER_EXTRA_PRECISIONS  // (see the end of this file)
+bool lengths_fit_the_flat_sweep(const Scene& scene) {
+    auto fits = [](double x) {
+        const double a = std::abs(x);
+        return a == 0 || (a >= kFlatSweepSmallest && a <= kFlatSweepLargest);
+    };
+    auto all_fit = [&](const Vec3<double>& v) { return fits(v.x) && fits(v.y) && fits(v.z); };
+    if (!(fits(scene.near_plane) && fits(scene.left) && fits(scene.right) && fits(scene.bottom) &&
+          fits(scene.top)))
+        return false;
+    for (const SphereSpec& s : scene.spheres)
+        if (!all_fit(s.centre) || !all_fit(s.scale)) return false;
+    for (const LightSpec& l : scene.lights)
+        if (!all_fit(l.position)) return false;
+    return true;
+}
+#endif
+
+namespace {
+// An ellipsoid that some pixels of a row may see, and which columns.
+struct Span {
+    std::uint32_t ellipsoid;
+    int first, last;
+};
+
+// Eye-ray hits on one ellipsoid waiting to be shaded together.
+template <typename Real>
+struct Packet {
+    int count = 0;
+    Real dx[kPacket], dy[kPacket], dz[kPacket], t[kPacket];
+    bool inside[kPacket];
+    std::uint8_t* out[kPacket];
+
+    void add(Real x, Real y, Real z, Real root, bool in, std::uint8_t* pixel) {
+        dx[count] = x, dy[count] = y, dz[count] = z, t[count] = root, inside[count] = in, out[count] = pixel;
+        ++count;
+    }
+    void shade(const Tracer<Real>& tracer, std::uint32_t ellipsoid, TraceScratch<Real>& scratch) {
+        if (count == 0) return;
+        tracer.eye_hit_pixels(ellipsoid, count, dx, dy, dz, t, inside, scratch, out);
+        count = 0;
+    }
+};
+
+// Eye-ray hits are gathered into packets tile by tile: kTileRows rows by kTileColumns
+// columns, one packet's worth. WHY: a packet of pixels that lie close together in both
+// directions mirrors rays that stay together (they split into fewer, fuller packets at
+// each bounce), and its points lie in a smaller ball (LightCones rules out more spheres
+// for the whole packet). Measured on the heavy scene, one thread, medians of 21
+// interleaved runs: rows of 16 pixels 100.2 ms, tiles of 4 x 4 80.9 ms; instructions
+// with 8 lanes (x86-64-v3, callgrind): 1 x 8 858M, 2 x 4 818M, 4 x 2 825M, 8 x 1 894M.
+constexpr int kTileRows = kPacket >= 16 ? 4 : 2;
+constexpr int kTileColumns = kPacket / kTileRows;
+
+// One thread's working memory, so that no row or pixel allocates.
+template <typename Real>
+struct Workspace {
+    TraceScratch<Real> scratch;
+    std::vector<Span> in_row;            // the row's ellipsoids
+    std::vector<EyeRowHits<Real>> hits;  // per row of a band: each column's nearest hit (eye_rays.h)
+    std::vector<Packet<Real>> packets;   // per ellipsoid
+    std::vector<std::uint32_t> seen;     // the ellipsoids some row of the band may see (repeats allowed)
+
+    Workspace(const Tracer<Real>& tracer, std::size_t ellipsoids, int columns)
+        : scratch(tracer.make_scratch()), hits(kTileRows, EyeRowHits<Real>(columns)), packets(ellipsoids) {
+        in_row.reserve(ellipsoids);
+        seen.reserve(ellipsoids * kTileRows);
+    }
+};
+
+// By default the other cores are called in only when the rest of the image would take
+// the calling thread longer than this alone (see render()). Calling a helper costs this
+// thread about 0.08 ms; where it starts on an idle core at once (helper_pool.h) it
+// draws rows about 0.1 ms later, where it waits for the scheduler to move it, 3 ms.
+// The earlier the call, the more of the image the helper shares: 100 us rather than
+// 400 us took 0.1 to 0.2 ms off the course scenes at 400x400 (testIllum, testReflection,
+// testAmbient, testShadow: medians of 21 to 25 interleaved runs; 200 us in between) and
+// left testBehind, which traces nothing, as it was.
+std::chrono::microseconds worth_helping() {
+    return std::chrono::microseconds(HelperPool::starts_on_idle_core() ? 100 : 3000);
+}
+}  // namespace
+
+template <typename Real>
+void render_flat_sweep_to(const Scene& scene, RowSink& sink, unsigned threads) {
+    const Tracer<Real> tracer(scene);
+
+    const Real left = static_cast<Real>(scene.left), right = static_cast<Real>(scene.right);
+    const Real bottom = static_cast<Real>(scene.bottom), top = static_cast<Real>(scene.top);
+    const Real near_z = -static_cast<Real>(scene.near_plane);
+    const Real columns = static_cast<Real>(scene.columns), rows = static_cast<Real>(scene.rows);
+
+    // Every pixel is a pure function of the scene and its (column, row): no state
+    // carries from one pixel to the next that could change a value (the last-occluder
+    // memory in the scratch only reorders tests whose answer is a yes/no "any").
+    // So the image is byte-identical whichever thread renders which rows.
+    // Which ellipsoids each pixel's eye ray may meet (screen_bounds.h): a pixel that
+    // none may meet is the background, without tracing.
+    const std::vector<PixelRect> rects = tracer.screen_rects(scene);
+    const auto spans = tracer.row_spans(scene);
+    const Vec3<Real> back = tracer.background();
+    const std::uint8_t background[3] = {to_byte(back.x), to_byte(back.y), to_byte(back.z)};
+
+    // Each row starts as a copy of a background row, written by the thread that renders
+    // the row, and only traced pixels are written over: most pixels of the course scenes
+    // see no ellipsoid, and a copy costs far less than a per-pixel test (measured in
+    // docs/speed.md).
+    const std::size_t row_bytes = static_cast<std::size_t>(scene.columns) * 3;
+    std::vector<std::uint8_t> background_row(row_bytes);
+    for (std::size_t i = 0; i < row_bytes; ++i) background_row[i] = background[i % 3];
+
+    // Rows go to the sink from a ring of rows as they are finished (row_ring.h), written
+    // by whichever thread completes a block of them while no block is being written.
+    // WHY: writing a 400x400 image took the calling thread 0.3-0.4 ms after the render
+    // (the kernel's copy into the page cache); a block written by one thread while the
+    // other renders costs the image half of that.
+    const unsigned most_threads = threads == 0 ? default_thread_count() : threads;
+    RowRing ring(sink, scene.rows, row_bytes, kTileRows, most_threads);
+
+    // Each column's x on the near plane, computed once instead of per row (the same
+    // operations, so the same bits).
+    std::vector<Real> column_x(static_cast<std::size_t>(scene.columns));
+    for (int c = 0; c < scene.columns; ++c)
+        column_x[static_cast<std::size_t>(c)] = left + (right - left) * static_cast<Real>(c) / columns;
+
+    // The camera's terms per ellipsoid, for intersecting eye rays many columns at a time.
+    std::vector<Ellipsoid<Real>> ellipsoids;
+    std::vector<MappedOrigin<Real>> eye_origins;
+    std::vector<int> first_columns, last_columns;
+    for (std::size_t i = 0; i < scene.spheres.size(); ++i) {
+        ellipsoids.push_back(tracer.ellipsoid(i));
+        eye_origins.push_back(tracer.eye_origin(i));
+        first_columns.push_back(rects[i].first_column);
+        last_columns.push_back(rects[i].last_column);
+    }
+    const EyeRays<Real> eye_rays(ellipsoids, eye_origins, Tracer<Real>::eye_min_t(), column_x, first_columns,
+                                 last_columns);
+
+    // A band of at most kTileRows rows.
+    auto render_rows = [&](int first_row, int end_row, Workspace<Real>& work) {
+        TraceScratch<Real>& scratch = work.scratch;
+        std::vector<Span>& in_row = work.in_row;
+        int row_lo[kTileRows], row_hi[kTileRows];  // per row, the columns some ellipsoid may cover
+        Real row_y[kTileRows];
+        work.seen.clear();
+        int band_lo = scene.columns, band_hi = -1;
+        for (int r = first_row; r < end_row; ++r) {
+            std::uint8_t* const row_out = ring.row(r);
+            std::copy(background_row.begin(), background_row.end(), row_out);
+            in_row.clear();
+            int lo = scene.columns, hi = -1;  // the columns some ellipsoid may cover
+            const double row_y_double = scene.top - (scene.top - scene.bottom) * r / scene.rows;
+            for (std::uint32_t i = 0; i < rects.size(); ++i) {
+                Span span{i, rects[i].first_column, rects[i].last_column};
+                if (rects[i].first_row <= r && r <= rects[i].last_row &&
+                    spans.narrow(i, row_y_double, span.first, span.last)) {
+                    in_row.push_back(span);
+                    lo = std::min(lo, span.first);
+                    hi = std::max(hi, span.last);
+                }
+            }
+            // The top-left corner of the pixel, not its centre: the keys demand it.
+            const Real y = top - (top - bottom) * static_cast<Real>(r) / rows;
+            // All columns of each span at once (eye_rays.h).
+            EyeRowHits<Real>& hits = work.hits[static_cast<std::size_t>(r - first_row)];
+            EyeRays<Real>::clear(hits, lo, hi);
+            for (const Span& span : in_row) {
+                eye_rays.intersect(hits, span.ellipsoid, span.first, span.last, column_x.data(), y, near_z);
+                work.seen.push_back(span.ellipsoid);
+            }
+            row_lo[r - first_row] = lo, row_hi[r - first_row] = hi, row_y[r - first_row] = y;
+            band_lo = std::min(band_lo, lo), band_hi = std::max(band_hi, hi);
+        }
+        // The hit pixels, shaded in packets of pixels that see the same ellipsoid
+        // (Tracer::eye_hit_pixels(), vector lanes), gathered tile by tile.
+        for (int c0 = band_lo; c0 <= band_hi; c0 += kTileColumns)
+            for (int r = first_row; r < end_row; ++r) {
+                const int b = r - first_row;
+                const EyeRowHits<Real>& hits = work.hits[static_cast<std::size_t>(b)];
+                std::uint8_t* const row_out = ring.row(r);
+                const int c_end = std::min(c0 + kTileColumns - 1, row_hi[b]);
+                for (int c = std::max(c0, row_lo[b]); c <= c_end; ++c) {
+                    const auto column = static_cast<std::size_t>(c);
+                    const std::uint32_t i = hits.ellipsoid[column];
+                    if (i == EyeRowHits<Real>::kNone) continue;  // the background
+                    Packet<Real>& packet = work.packets[i];
+                    packet.add(column_x[column], row_y[b], near_z, hits.t[column], hits.inside[column] != 0,
+                               row_out + column * 3);
+                    if (packet.count == kPacket) packet.shade(tracer, i, scratch);
+                }
+            }
+        for (const std::uint32_t i : work.seen) work.packets[i].shade(tracer, i, scratch);
+    };
+
+    // Rows are handed out a band of kTileRows at a time from a shared counter, so that a
+    // thread that draws cheap rows (background) takes more of them, and at the end the
+    // calling thread waits for at most one band of a helper's.
+    std::atomic<int> next_row{0};
+    // Renders bands until none is left; after_row(r) after each, r its last row.
+    auto take_rows = [&](Workspace<Real>& work, auto after_row) {
+        for (int r = next_row.fetch_add(kTileRows); r < scene.rows; r = next_row.fetch_add(kTileRows)) {
+            const int end = std::min(r + kTileRows, scene.rows);
+            ring.reserve(end);
+            render_rows(r, end, work);
+            for (int f = r; f < end; ++f) ring.finish(f);
+            after_row(end - 1);
+        }
+    };
+    // Each helper's working memory is made here, so that a helper thread allocates
+    // nothing (its first allocation would set up a malloc arena of its own).
+    std::vector<Workspace<Real>> helper_work;
+    auto help = [&](unsigned h) { take_rows(helper_work[h], [](int) {}); };
+    using Help = decltype(help);
+    HelperPool::Job helpers;  // declared after all that help uses: closed first
+    auto call_helpers = [&](unsigned count) {
+        const unsigned wanted = std::min<unsigned>(count, static_cast<unsigned>(scene.rows)) - 1;
+        helper_work.reserve(wanted);  // no reallocation: the helpers hold references
+        for (unsigned h = 0; h < wanted; ++h) helper_work.emplace_back(tracer, rects.size(), scene.columns);
+        helpers.start(
+            wanted, [](void* context, unsigned h) { (*static_cast<Help*>(context))(h); }, &help);
+    };
+    // By default (threads = 0) the calling thread starts alone and calls in the other
+    // cores only when, at its pace so far, the rest of the image would take it longer
+    // than worth_helping(): scenes with few lit pixels are done sooner than a second
+    // thread pays (measured in docs/speed.md).
+    if (threads > 1) call_helpers(threads);
+    Workspace<Real> work(tracer, rects.size(), scene.columns);
+    const auto start = std::chrono::steady_clock::now();
+    const auto worth = worth_helping();
+    take_rows(work, [&](int r) {
+        if (threads != 0) return;
+        // Alone, this thread has done rows 0..r. Not judged on its first few microseconds
+        // (cold caches): a scene done by then never asks.
+        const int done = r + 1, left = scene.rows - done;
+        const auto elapsed = std::chrono::steady_clock::now() - start;
+        if (left > 0 && elapsed * 8 >= worth && elapsed * left >= worth * done) {
+            threads = most_threads;
+            if (threads > 1) call_helpers(std::min<unsigned>(threads, static_cast<unsigned>(left + 1)));
+        }
+    });
+    helpers.finish();
+    ring.flush();  // every row is finished: the rest
+}
+
+// As render.cpp: double for raytracer.exe, float and long double for the tests.
+#ifdef RAYTRACER_EXTRA_PRECISIONS
+template void render_flat_sweep_to<float>(const Scene&, RowSink&, unsigned);
+template void render_flat_sweep_to<long double>(const Scene&, RowSink&, unsigned);
+#else
+template void render_flat_sweep_to<double>(const Scene&, RowSink&, unsigned);
+#endif
+
+}  // namespace rt
