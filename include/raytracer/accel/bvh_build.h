@@ -79,11 +79,20 @@ public:
 private:
     void grow(std::vector<BuildItem<C>>& items, std::size_t node, std::size_t first, std::size_t last,
               int depth) {
+        // The node's box and guard, and the box of the items' centres, in one pass.
         BuildNode<C> n;
         n.box = items[first].box, n.guard = items[first].guard;
-        for (std::size_t k = first + 1; k < last; ++k)
-            n.box.grow(items[k].box), n.guard = std::min(n.guard, items[k].guard);
-        const std::size_t middle = last - first <= 1 ? last : split(items, first, last, n.box, depth);
+        BuildBox<C> centres;
+        for (int a = 0; a < 3; ++a) centres.lo[a] = centres.hi[a] = items[first].centre[a];
+        for (std::size_t k = first + 1; k < last; ++k) {
+            const BuildItem<C>& item = items[k];
+            n.box.grow(item.box), n.guard = std::min(n.guard, item.guard);
+            for (int a = 0; a < 3; ++a)
+                centres.lo[a] = std::min(centres.lo[a], item.centre[a]),
+                centres.hi[a] = std::max(centres.hi[a], item.centre[a]);
+        }
+        const std::size_t middle =
+            last - first <= 1 ? last : split(items, first, last, n.box, centres, depth);
         if (middle == last) {
             n.first = static_cast<std::uint32_t>(first), n.count = static_cast<std::uint32_t>(last - first);
             nodes_[node] = n;
@@ -135,18 +144,13 @@ private:
         }
     }
 
-    // Where to split items [first, last), or last for a leaf: the binned SAH's best plane
-    // over the three axes; the median of the centres' widest axis where it finds none but
-    // the items are too many for a leaf, and from kMedianDepth on.
+    // Where to split items [first, last) (their box, their centres' box), or last for a
+    // leaf: the binned SAH's best plane along the centres' widest axis; the median along
+    // it where the SAH finds none but the items are too many for a leaf, and from
+    // kMedianDepth on.
     std::size_t split(std::vector<BuildItem<C>>& items, std::size_t first, std::size_t last,
-                      const BuildBox<C>& box, int depth) const {
+                      const BuildBox<C>& box, const BuildBox<C>& centres, int depth) const {
         const std::size_t n = last - first;
-        BuildBox<C> centres;
-        for (int a = 0; a < 3; ++a) centres.lo[a] = centres.hi[a] = items[first].centre[a];
-        for (std::size_t k = first + 1; k < last; ++k)
-            for (int a = 0; a < 3; ++a)
-                centres.lo[a] = std::min(centres.lo[a], items[k].centre[a]),
-                centres.hi[a] = std::max(centres.hi[a], items[k].centre[a]);
         int widest = 0;
         for (int a = 1; a < 3; ++a)
             if (centres.hi[a] - centres.lo[a] > centres.hi[widest] - centres.lo[widest]) widest = a;
