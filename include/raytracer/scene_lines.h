@@ -23,7 +23,7 @@ struct ByteKinds {
         for (; *bytes != 0; ++bytes) of[static_cast<unsigned char>(*bytes)] = kind;
     }
 };
-constexpr ByteKinds kByteKinds;
+inline constexpr ByteKinds kByteKinds;
 inline unsigned char kind_of(char c) { return kByteKinds.of[static_cast<unsigned char>(c)]; }
 }  // namespace detail
 

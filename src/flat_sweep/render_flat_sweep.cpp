@@ -1,5 +1,5 @@
 // The flat sweep (flat_sweep/render_flat_sweep.h): eye rays by row, hits shaded in
-// vector packets gathered in 4x4 tiles, rows to the file as they finish.
+// vector packets gathered in tiles (4x4 with 16 lanes), rows to the file as they finish.
 #include "raytracer/flat_sweep/render_flat_sweep.h"
 
 #include <algorithm>
@@ -87,7 +87,7 @@ struct Workspace {
 };
 
 // By default the other cores are called in only when the rest of the image would take
-// the calling thread longer than this alone (see render()). Calling a helper costs this
+// the calling thread longer than this alone (see render_flat_sweep_to()). Calling a helper costs this
 // thread about 0.08 ms; where it starts on an idle core at once (helper_pool.h) it
 // draws rows about 0.1 ms later, where it waits for the scheduler to move it, 3 ms.
 // The earlier the call, the more of the image the helper shares: 100 us rather than

@@ -108,11 +108,12 @@ public:
         bool rays_set = false;
         traverse<true, true>(ray, std::numeric_limits<C>::infinity(), [&](Child leaf, C& t1) {
             for (std::uint32_t i = leaf.first; i < leaf.first + leaf.count; ++i) {
-                if (!meets_box(ray, inflated_box<C>(items_[i]), t1)) continue;
+                const BuildBox<C> box = inflated_box<C>(items_[i]);
+                if (!meets_box(ray, box, t1)) continue;
                 if (!rays_set)
                     rays.set(origins, directions, lanes, std::numeric_limits<C>::infinity()), rays_set = true;
                 Real hit[N], near[N], far[N];
-                for (unsigned m = rays.roots(items_[i], lanes, hit, near, far); m != 0; m &= m - 1) {
+                for (unsigned m = rays.roots(items_[i], box, lanes, hit, near, far); m != 0; m &= m - 1) {
                     const int k = lowest_bit(m);
                     Real t;
                     bool inside;
@@ -177,7 +178,8 @@ public:
         const std::uint32_t tried = blocker;
         auto try_ellipsoid = [&](std::uint32_t i, unsigned open) {
             Real hit[N], near[N], far[N];
-            for (unsigned m = rays.roots(items_[i], open, hit, near, far); m != 0; m &= m - 1) {
+            for (unsigned m = rays.roots(items_[i], inflated_box<C>(items_[i]), open, hit, near, far); m != 0;
+                 m &= m - 1) {
                 const int k = lowest_bit(m);
                 if (blocks_segment(Roots<Real>{hit[k] != 0, near[k], far[k]}))
                     blocked |= 1U << k, blocker = i;

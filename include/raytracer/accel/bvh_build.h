@@ -12,6 +12,7 @@
 #include <exception>
 #include <limits>
 #include <thread>
+#include <utility>
 #include <vector>
 
 namespace rt {
@@ -159,7 +160,7 @@ private:
         C best_cost = C(kItemCost) * C(n);  // that of a leaf
         int best_axis = -1, best_bin = 0;
         // Along the centres' widest axis only: a third of the work, and on the scale
-        // scenes the same render time within noise (bvh.h's notes).
+        // scenes the same render time within noise (docs/speed.md).
         if (centres.hi[widest] > centres.lo[widest]) {
             const int bin = best_plane(items, first, last, box, centres, widest, best_cost);
             if (bin > 0) best_axis = widest, best_bin = bin;

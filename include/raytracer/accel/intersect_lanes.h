@@ -1,13 +1,13 @@
-// intersect() (ellipsoid.h) for N rays against one ellipsoid at once, ray k in lane k.
+// intersect() (ellipsoid.h) for N rays against one ellipsoid at once, ray k in lane k:
+// the rays of a bundle in the tree's leaves (slab_rays.h), and the flat sweep's mirrored
+// rays of a packet of hits (Tracer::reflections()).
 //
-// WHY: the mirrored rays of a packet of hits (Tracer::reflections()) were searched one
-// at a time: per ray a culling pass over all bounding spheres, then intersect() on each
-// candidate, four divisions and a square root with branches in between. In the mirror
-// room of tests/bench/heavy.txt every hit reflects, so this was a fifth of the time.
-// Here the lanes run the one root solver, unit_sphere_roots(), in a loop that GCC and
-// Clang turn into vector instructions (which round as scalar ones do: no fused
-// multiply-adds, CMakeLists.txt), on the same inputs intersect() gives it: each lane
-// gets intersect()'s roots bit for bit.
+// WHY: one ray at a time, intersect() is four divisions and a square root with branches
+// in between (in the mirror room of tests/bench/heavy.txt, where every hit reflects, a
+// fifth of the flat sweep's time). Here the lanes run the one root solver,
+// unit_sphere_roots(), in a loop that GCC and Clang turn into vector instructions
+// (which round as scalar ones do: no fused multiply-adds, CMakeLists.txt), on the same
+// inputs intersect() gives it: each lane gets intersect()'s roots bit for bit.
 #pragma once
 
 #include "raytracer/compiler.h"

@@ -138,11 +138,11 @@ struct LaneRays {
             }
         }
     }
-    // Which of lanes may meet e's box; where some do, every lane's roots with e, in
-    // one vector loop (intersect()'s, bit for bit).
-    unsigned roots(const Ellipsoid<Real>& e, unsigned lanes, Real (&hit)[N], Real (&near)[N],
-                   Real (&far)[N]) const {
-        const unsigned met = lanes & meeting(inflated_box<C>(e));
+    // Which of lanes may meet e's box (inflated_box()); where some do, every lane's
+    // roots with e, in one vector loop (intersect()'s, bit for bit).
+    unsigned roots(const Ellipsoid<Real>& e, const BuildBox<C>& box, unsigned lanes, Real (&hit)[N],
+                   Real (&near)[N], Real (&far)[N]) const {
+        const unsigned met = lanes & meeting(box);
         if (met != 0)
             intersect_lanes<N>(e, from[0], from[1], from[2], along[0], along[1], along[2], hit, near, far);
         return met;
@@ -165,15 +165,20 @@ struct LaneRays {
     }
 };
 
-// Per axis, the least and the greatest of v[k] over the lanes.
+// Per axis, the least and the greatest of v[k] over the lanes. Kept in locals, not in
+// lo and hi, which may alias v: through memory each lane waited on the last one's
+// stores (a sixth of a course scene's time through the tree).
 template <typename C, typename Real, int N>
 void bounds_of(const Vec3<Real> (&v)[N], unsigned lanes, C (&lo)[3], C (&hi)[3]) {
-    for (int a = 0; a < 3; ++a) lo[a] = std::numeric_limits<C>::infinity(), hi[a] = -lo[a];
+    constexpr C kInf = std::numeric_limits<C>::infinity();
+    C x_lo = kInf, y_lo = kInf, z_lo = kInf, x_hi = -kInf, y_hi = -kInf, z_hi = -kInf;
     for (unsigned m = lanes; m != 0; m &= m - 1) {
         const Vec3<Real>& p = v[lowest_bit(m)];
-        const C c[3] = {C(p.x), C(p.y), C(p.z)};
-        for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], c[a]), hi[a] = std::max(hi[a], c[a]);
+        const C x = C(p.x), y = C(p.y), z = C(p.z);
+        x_lo = std::min(x_lo, x), y_lo = std::min(y_lo, y), z_lo = std::min(z_lo, z);
+        x_hi = std::max(x_hi, x), y_hi = std::max(y_hi, y), z_hi = std::max(z_hi, z);
     }
+    lo[0] = x_lo, lo[1] = y_lo, lo[2] = z_lo, hi[0] = x_hi, hi[1] = y_hi, hi[2] = z_hi;
 }
 
 }  // namespace rt

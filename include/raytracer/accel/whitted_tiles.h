@@ -7,9 +7,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "raytracer/bit_scan.h"
+#include "raytracer/image.h"
 #include "raytracer/reference/spec_rules.h"
 #include "raytracer/reference/whitted.h"
 
