@@ -46,8 +46,8 @@ struct SlabRay {
 // without a finite inverse (a subnormal scene; such a ray is tried against every
 // ellipsoid: an infinite inverse makes a slab's t infinite where it is finite).
 template <typename C>
-bool make_slab_ray(const C (&o_lo)[3], const C (&o_hi)[3], const C (&d_lo)[3], const C (&d_hi)[3],
-                   SlabRay<C>& ray) {
+RT_ALWAYS_INLINE bool make_slab_ray(const C (&o_lo)[3], const C (&o_hi)[3], const C (&d_lo)[3],
+                                    const C (&d_hi)[3], SlabRay<C>& ray) {
     constexpr C kInf = std::numeric_limits<C>::infinity();
     for (int a = 0; a < 3; ++a) {
         for (const C d : {d_lo[a], d_hi[a]})
@@ -76,7 +76,7 @@ RT_ALWAYS_INLINE void clip_to_slab(C p, C q, C& enter, C& leave) {
 // Whether a ray from within every guard distance, or a bundle of them, may meet the
 // box within [0, t1]: Bvh::meets() for one box.
 template <typename C>
-bool meets_box(const SlabRay<C>& ray, const BuildBox<C>& box, C t1) {
+RT_ALWAYS_INLINE bool meets_box(const SlabRay<C>& ray, const BuildBox<C>& box, C t1) {
     C enter = 0, leave = t1;
     for (int a = 0; a < 3; ++a)
         clip_to_slab((box.lo[a] - ray.lo_from[a]) * ray.lo_inv[a],
@@ -169,7 +169,7 @@ struct LaneRays {
 // lo and hi, which may alias v: through memory each lane waited on the last one's
 // stores (a sixth of a course scene's time through the tree).
 template <typename C, typename Real, int N>
-void bounds_of(const Vec3<Real> (&v)[N], unsigned lanes, C (&lo)[3], C (&hi)[3]) {
+RT_ALWAYS_INLINE void bounds_of(const Vec3<Real> (&v)[N], unsigned lanes, C (&lo)[3], C (&hi)[3]) {
     constexpr C kInf = std::numeric_limits<C>::infinity();
     C x_lo = kInf, y_lo = kInf, z_lo = kInf, x_hi = -kInf, y_hi = -kInf, z_hi = -kInf;
     for (unsigned m = lanes; m != 0; m &= m - 1) {
