@@ -11,10 +11,12 @@
 #include <cstdint>
 #include <vector>
 
+#include "raytracer/accel/slab_rays.h"
 #include "raytracer/bit_scan.h"
 #include "raytracer/image.h"
 #include "raytracer/reference/spec_rules.h"
 #include "raytracer/reference/whitted.h"
+#include "raytracer/scene_precision.h"
 
 namespace rt {
 
@@ -30,7 +32,9 @@ public:
         background_[0] = to_byte(back.x), background_[1] = to_byte(back.y), background_[2] = to_byte(back.z);
     }
 
-    // One bounce's lanes: the rays, what they hit, and their colours.
+    // One bounce's lanes: the rays, what they hit, and their colours. The eye rays'
+    // origins (bounce 0) are the camera's (0, 0, 0) from the scratch's making on:
+    // nothing writes them.
     struct Bounce {
         V origin[N], direction[N], colour[N];
         NearestHit<Real> hit[N];
@@ -56,9 +60,9 @@ public:
         Bounce& eye = scratch.bounces[0];
         for (unsigned m = lanes; m != 0; m &= m - 1) {
             const int k = lowest_bit(m);
-            eye.origin[k] = {}, eye.direction[k] = {x[k], y[k], tracer_.near_z()};
+            eye.direction[k] = {x[k], y[k], tracer_.near_z()};
         }
-        const unsigned hits = trace(0, kEyeRayMinT, tracer_.background(), lanes, scratch);
+        const unsigned hits = trace(0, lanes, scratch);
         for (unsigned m = lanes & ~hits; m != 0; m &= m - 1) {  // BACK: its bytes, made once
             const int k = lowest_bit(m);
             out[k][0] = background_[0], out[k][1] = background_[1], out[k][2] = background_[2];
@@ -71,11 +75,14 @@ public:
     }
 
 private:
-    // Whitted::trace() for each lane in lanes of bounce `depth`: its rays' colours; the
-    // lanes whose rays hit something.
-    unsigned trace(int depth, double min_t, const V& miss, unsigned lanes, Scratch& scratch) const {
+    // Whitted::trace() for each lane in lanes of bounce `depth` (0: the eye rays, which
+    // see BACK where they miss; then mirrored rays, which see black): its rays' colours;
+    // the lanes whose rays hit something.
+    unsigned trace(int depth, unsigned lanes, Scratch& scratch) const {
         Bounce& b = scratch.bounces[static_cast<std::size_t>(depth)];
         const int reflections_left = kMaxReflections - depth;
+        const double min_t = depth == 0 ? kEyeRayMinT : kReflectedRayMinT;
+        const V miss = depth == 0 ? tracer_.background() : V{};
         unsigned hits = 0, lit = 0, reflecting = 0;
         tracer_.geometry().closest(b.origin, b.direction, lanes, min_t, b.hit);
         for (unsigned m = lanes; m != 0; m &= m - 1) {
@@ -102,7 +109,7 @@ private:
             }
             unsigned blocked = 0;
             for (unsigned left = facing; left != 0;) {
-                const unsigned bundle = close_lanes(b.surface, left);
+                const unsigned bundle = close_lanes(b, left);
                 left &= ~bundle;
                 blocked |= tracer_.geometry().occluded(b.point, tracer_.light_position(li), bundle,
                                                        scratch.tracer.blockers[li]);
@@ -118,7 +125,7 @@ private:
             const int k = lowest_bit(m);
             next.origin[k] = b.point[k], next.direction[k] = Tracer::mirrored(b.surface[k], b.direction[k]);
         }
-        trace(depth + 1, kReflectedRayMinT, V{}, reflecting, scratch);
+        trace(depth + 1, reflecting, scratch);
         for (unsigned m = reflecting; m != 0; m &= m - 1) {
             const int k = lowest_bit(m);
             b.colour[k] += next.colour[k] * b.surface[k].ellipsoid->kr;
@@ -133,22 +140,19 @@ private:
     // would sweep the scene). Measured (callgrind, sphereflakes 4 and 5): bundles of 2
     // or 3 rays cost more than the rays alone.
     static constexpr int kBundleLanes = 4;
-    static unsigned close_lanes(const typename Tracer::Surface (&surface)[N], unsigned lanes) {
+    static unsigned close_lanes(const Bounce& b, unsigned lanes) {
         const int first = lowest_bit(lanes);
-        const Ellipsoid<Real>& e = *surface[first].ellipsoid;
+        const Ellipsoid<Real>& e = *b.surface[first].ellipsoid;
         unsigned bundle = 0;
-        V lo = surface[first].point, hi = lo;
-        for (unsigned m = lanes; m != 0; m &= m - 1) {
-            const int k = lowest_bit(m);
-            if (surface[k].ellipsoid != &e) continue;
-            bundle |= 1U << k;
-            const V& p = surface[k].point;
-            lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-            hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-        }
+        for (unsigned m = lanes; m != 0; m &= m - 1)
+            bundle |= b.surface[lowest_bit(m)].ellipsoid == &e ? 1U << lowest_bit(m) : 0U;
+        using C = AtLeastDouble<Real>;
+        C lo[3], hi[3];
+        bounds_of(b.point, bundle, lo, hi);
         using std::abs;
-        const Real diameter = 2 * std::min({abs(e.scale.x), abs(e.scale.y), abs(e.scale.z)});
-        const bool close = hi.x - lo.x <= diameter && hi.y - lo.y <= diameter && hi.z - lo.z <= diameter;
+        const C diameter = 2 * C(std::min({abs(e.scale.x), abs(e.scale.y), abs(e.scale.z)}));
+        const bool close =
+            hi[0] - lo[0] <= diameter && hi[1] - lo[1] <= diameter && hi[2] - lo[2] <= diameter;
         return close && bit_count(bundle) >= kBundleLanes ? bundle : 1U << first;
     }
 
