@@ -16,10 +16,11 @@
 #include <string>
 #include <vector>
 
-#include "raytracer/flat_sweep/tracer.h"
 #include "raytracer/image.h"
 #include "raytracer/parser.h"
 #include "raytracer/ppm.h"
+#include "raytracer/reference/brute_force.h"
+#include "raytracer/reference/whitted.h"
 #include "raytracer/render.h"
 #include "run_program.h"
 
@@ -35,15 +36,18 @@ void expect(bool ok, const std::string& name, const std::string& what) {
     std::cout << "FAIL  " << name << ": " << what << "\n";
 }
 
-// Pixels whose colour has a non-finite channel, traced the way rt::render traces them.
+// Pixels whose colour has a non-finite channel, traced by the reference (whitted.h),
+// whose bytes every path gives.
 long long non_finite_pixels(const rt::Scene& scene) {
-    const rt::Tracer<double> tracer(scene);
+    const rt::Whitted<double, rt::BruteForce<double>> reference(
+        scene, rt::BruteForce<double>(rt::make_ellipsoids<double>(scene)));
+    auto scratch = reference.make_scratch();
     long long count = 0;
     for (int r = 0; r < scene.rows; ++r) {
         const double y = scene.top - (scene.top - scene.bottom) * r / scene.rows;
         for (int c = 0; c < scene.columns; ++c) {
             const double x = scene.left + (scene.right - scene.left) * c / scene.columns;
-            const rt::Vec3<double> colour = tracer.trace_eye_ray({x, y, -scene.near_plane});
+            const rt::Vec3<double> colour = reference.eye_ray_colour({x, y, -scene.near_plane}, scratch);
             if (!std::isfinite(colour.x) || !std::isfinite(colour.y) || !std::isfinite(colour.z)) ++count;
         }
     }

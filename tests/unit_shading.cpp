@@ -7,9 +7,10 @@
 #include <random>
 
 #include "check.h"
-#include "raytracer/flat_sweep/tracer.h"
 #include "raytracer/image.h"
+#include "raytracer/reference/brute_force.h"
 #include "raytracer/reference/power.h"
+#include "raytracer/reference/whitted.h"
 
 namespace {
 
@@ -38,7 +39,13 @@ rt::Scene scene(V ambient, V background = {0.25, 0.5, 0.75}) {
 
 void light(rt::Scene& s, V position, V intensity) { s.lights.push_back({"l", position, intensity, 0}); }
 
-V trace(const rt::Scene& s, V direction) { return rt::Tracer<double>(s).trace_eye_ray(direction); }
+// The reference's colour along an eye ray (whitted.h: what every path's bytes are held to).
+V trace(const rt::Scene& s, V direction) {
+    const rt::Whitted<double, rt::BruteForce<double>> reference(
+        s, rt::BruteForce<double>(rt::make_ellipsoids<double>(s)));
+    auto scratch = reference.make_scratch();
+    return reference.eye_ray_colour(direction, scratch);
+}
 
 }  // namespace
 

@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "raytracer/compiler.h"
+
 namespace rt {
 
 template <typename Real>
@@ -18,14 +20,14 @@ struct Vec3 {
         return {static_cast<Real>(v.x), static_cast<Real>(v.y), static_cast<Real>(v.z)};
     }
 
-    constexpr Vec3 operator+(const Vec3& o) const { return {x + o.x, y + o.y, z + o.z}; }
-    constexpr Vec3 operator-(const Vec3& o) const { return {x - o.x, y - o.y, z - o.z}; }
-    constexpr Vec3 operator-() const { return {-x, -y, -z}; }
-    constexpr Vec3 operator*(Real k) const { return {x * k, y * k, z * k}; }
+    RT_ALWAYS_INLINE constexpr Vec3 operator+(const Vec3& o) const { return {x + o.x, y + o.y, z + o.z}; }
+    RT_ALWAYS_INLINE constexpr Vec3 operator-(const Vec3& o) const { return {x - o.x, y - o.y, z - o.z}; }
+    RT_ALWAYS_INLINE constexpr Vec3 operator-() const { return {-x, -y, -z}; }
+    RT_ALWAYS_INLINE constexpr Vec3 operator*(Real k) const { return {x * k, y * k, z * k}; }
     // Componentwise product and quotient: the ellipsoid maps rays by its scales.
-    constexpr Vec3 operator*(const Vec3& o) const { return {x * o.x, y * o.y, z * o.z}; }
-    constexpr Vec3 operator/(const Vec3& o) const { return {x / o.x, y / o.y, z / o.z}; }
-    Vec3& operator+=(const Vec3& o) {
+    RT_ALWAYS_INLINE constexpr Vec3 operator*(const Vec3& o) const { return {x * o.x, y * o.y, z * o.z}; }
+    RT_ALWAYS_INLINE constexpr Vec3 operator/(const Vec3& o) const { return {x / o.x, y / o.y, z / o.z}; }
+    RT_ALWAYS_INLINE Vec3& operator+=(const Vec3& o) {
         x += o.x;
         y += o.y;
         z += o.z;
@@ -39,18 +41,18 @@ constexpr Vec3<Real> operator*(Real k, const Vec3<Real>& v) {
 }
 
 template <typename Real>
-constexpr Real dot(const Vec3<Real>& a, const Vec3<Real>& b) {
+RT_ALWAYS_INLINE constexpr Real dot(const Vec3<Real>& a, const Vec3<Real>& b) {
     return a.x * b.x + a.y * b.y + a.z * b.z;
 }
 
 template <typename Real>
-Real length(const Vec3<Real>& v) {
+RT_ALWAYS_INLINE Real length(const Vec3<Real>& v) {
     using std::sqrt;
     return sqrt(dot(v, v));
 }
 
 template <typename Real>
-Vec3<Real> normalize(const Vec3<Real>& v) {
+RT_ALWAYS_INLINE Vec3<Real> normalize(const Vec3<Real>& v) {
     return v * (Real(1) / length(v));
 }
 

@@ -1,7 +1,7 @@
 // Tracer::eye_hit_pixels() shades up to kPacket eye-ray hits at once with vector
-// instructions (hit_packet.h); each pixel's colour must equal, bit for bit, the one of
-// the one-pixel path (trace_eye_ray(), i.e. shade()), and its bytes those of
-// eye_hit_pixel(), in float, double and long double: for packets of neighbouring
+// instructions (hit_packet.h); each pixel's colour must equal, bit for bit, the
+// reference's for that pixel alone (Whitted::eye_ray_colour(), whitted.h), and its bytes
+// to_byte() of it, in float, double and long double: for packets of neighbouring
 // pixels, of pixels scattered over a row, and partial packets.
 #include <cmath>
 #include <cstddef>
@@ -13,6 +13,9 @@
 
 #include "check.h"
 #include "raytracer/flat_sweep/tracer.h"
+#include "raytracer/image.h"
+#include "raytracer/reference/brute_force.h"
+#include "raytracer/reference/whitted.h"
 #include "stress_scenes.h"
 
 namespace {
@@ -40,6 +43,9 @@ long long differing_bytes(const rt::Scene& scene, int packet, int stride) {
     using V = rt::Vec3<Real>;
     const rt::Tracer<Real> tracer(scene);
     rt::TraceScratch<Real> scratch = tracer.make_scratch();
+    const rt::Whitted<Real, rt::BruteForce<Real>> reference(
+        scene, rt::BruteForce<Real>(rt::make_ellipsoids<Real>(scene)));
+    auto reference_scratch = reference.make_scratch();
     long long differing = 0;
     const Real left = Real(scene.left), right = Real(scene.right), top = Real(scene.top),
                bottom = Real(scene.bottom);
@@ -57,9 +63,11 @@ long long differing_bytes(const rt::Scene& scene, int packet, int stride) {
         std::vector<std::uint8_t> one(std::size_t(scene.columns) * 3), many(one.size());
         std::vector<V> one_colour(std::size_t(scene.columns)), many_colour(one_colour.size());
         for (const EyeHit<Real>& h : hits) {
-            tracer.eye_hit_pixel(h.ellipsoid, h.t, h.inside, {h.x, h.y, h.z}, scratch,
-                                 one.data() + std::size_t(h.column) * 3);
-            one_colour[std::size_t(h.column)] = tracer.trace_eye_ray({h.x, h.y, h.z}, scratch);
+            const V colour = reference.eye_ray_colour({h.x, h.y, h.z}, reference_scratch);
+            one_colour[std::size_t(h.column)] = colour;
+            std::uint8_t* const pixel = one.data() + std::size_t(h.column) * 3;
+            pixel[0] = rt::to_byte(colour.x), pixel[1] = rt::to_byte(colour.y),
+            pixel[2] = rt::to_byte(colour.z);
         }
         // Packets of hits on one ellipsoid, in the order (k mod stride, k).
         for (std::uint32_t e = 0; e < scene.spheres.size(); ++e) {

@@ -14,6 +14,8 @@
 #include "raytracer/accel/slab_rays.h"
 #include "raytracer/bit_scan.h"
 #include "raytracer/image.h"
+#include "raytracer/lanes.h"
+#include "raytracer/reference/shading.h"
 #include "raytracer/reference/spec_rules.h"
 #include "raytracer/reference/whitted.h"
 #include "raytracer/scene_precision.h"
@@ -25,6 +27,7 @@ class WhittedTiles {
 public:
     using Tracer = Whitted<Real, Geometry>;
     using V = Vec3<Real>;
+    using L = Lanes<Real, N>;  // a number per lane (lanes.h)
     static_assert(N >= 1 && N <= 32, "a tile's lanes are the bits of an unsigned");
 
     explicit WhittedTiles(const Tracer& tracer) : tracer_(tracer) {
@@ -34,13 +37,17 @@ public:
 
     // One bounce's lanes: the rays, what they hit, and their colours. The eye rays'
     // origins (bounce 0) are the camera's (0, 0, 0) from the scratch's making on:
-    // nothing writes them.
+    // nothing writes them. Lanes not in play hold what an earlier tile left: their
+    // arithmetic runs and is never read.
     struct Bounce {
-        V origin[N], direction[N], colour[N];
+        V origin[N], direction[N];  // as the geometry's bundle queries take them
         NearestHit<Real> hit[N];
-        typename Tracer::Surface surface[N];
-        V point[N];  // surface[k].point, as the bundle queries take them
-        typename Tracer::LightRay light[N];
+        const Ellipsoid<Real>* ellipsoid[N];
+        V point[N];  // the hit points, for the shadow bundles and the next bounce
+        SurfacePoint<L> surface;
+        Finish<L> finish;
+        L kr;
+        Vec3<L> colour;
     };
     // A thread's working memory: the tracer's, and the lanes of each bounce, made once
     // (a tile's arrays are a few KB: set up per tile, they cost more than a missed tile's
@@ -69,44 +76,52 @@ public:
         }
         for (unsigned m = hits; m != 0; m &= m - 1) {
             const int k = lowest_bit(m);
-            const V& colour = eye.colour[k];
-            out[k][0] = to_byte(colour.x), out[k][1] = to_byte(colour.y), out[k][2] = to_byte(colour.z);
+            out[k][0] = to_byte(eye.colour.x[k]), out[k][1] = to_byte(eye.colour.y[k]),
+            out[k][2] = to_byte(eye.colour.z[k]);
         }
     }
 
 private:
     // Whitted::trace() for each lane in lanes of bounce `depth` (0: the eye rays, which
     // see BACK where they miss; then mirrored rays, which see black): its rays' colours;
-    // the lanes whose rays hit something.
+    // the lanes whose rays hit something. Whitted::shade()'s arithmetic for all lanes at
+    // once (shading.h over Lanes), its branches as lane sets.
     unsigned trace(int depth, unsigned lanes, Scratch& scratch) const {
         Bounce& b = scratch.bounces[static_cast<std::size_t>(depth)];
-        const int reflections_left = kMaxReflections - depth;
-        const double min_t = depth == 0 ? kEyeRayMinT : kReflectedRayMinT;
-        const V miss = depth == 0 ? tracer_.background() : V{};
+        tracer_.geometry().closest(b.origin, b.direction, lanes, depth == 0 ? kEyeRayMinT : kReflectedRayMinT,
+                                   b.hit);
+        const Vec3<L> miss = Vec3<L>::from(depth == 0 ? tracer_.background() : V{});
+        const bool may_reflect = depth < kMaxReflections;
         unsigned hits = 0, lit = 0, reflecting = 0;
-        tracer_.geometry().closest(b.origin, b.direction, lanes, min_t, b.hit);
-        for (unsigned m = lanes; m != 0; m &= m - 1) {
+        Vec3<L> origin, direction, centre, scale_squared, ambient;
+        L t;
+        LaneBits inside = 0;
+        for (unsigned m = lanes; m != 0; m &= m - 1) {  // gather each hit's terms into its lane
             const int k = lowest_bit(m);
-            if (!b.hit[k].found()) {
-                b.colour[k] = miss;
-                continue;
-            }
-            typename Tracer::Surface& s = b.surface[k];
-            s = tracer_.surface(b.hit[k], b.origin[k], b.direction[k], reflections_left);
-            b.point[k] = s.point;
-            b.colour[k] = s.material->ambient;
+            const NearestHit<Real>& hit = b.hit[k];
+            if (!hit.found()) continue;
+            const Ellipsoid<Real>& e = tracer_.geometry().ellipsoid(hit.ellipsoid);
+            const typename Tracer::Material& material = tracer_.material(hit.ellipsoid);
+            b.ellipsoid[k] = &e;
+            set_lane(origin, k, b.origin[k]), set_lane(direction, k, b.direction[k]);
+            set_lane(centre, k, e.centre), set_lane(scale_squared, k, e.scale_squared);
+            set_lane(ambient, k, material.ambient);
+            t[k] = hit.t;
+            inside |= hit.inside ? LaneBits(1) << k : 0;
+            set_lane(b.finish, k, material.finish);
+            b.kr[k] = e.kr;
             hits |= 1U << k;
-            lit |= s.material->no_lighting ? 0U : 1U << k;
-            reflecting |= s.reflects ? 1U << k : 0U;
+            lit |= material.no_lighting ? 0U : 1U << k;
+            reflecting |= may_reflect && e.kr > 0 ? 1U << k : 0U;
         }
+        b.colour = select(LaneBits(hits), ambient, miss);
         if (hits == 0) return hits;
+        b.surface = surface_point(origin, direction, t, inside, centre, scale_squared);
+        for (unsigned m = hits; m != 0; m &= m - 1)
+            b.point[lowest_bit(m)] = lane(b.surface.point, lowest_bit(m));
         for (std::size_t li = 0; li < tracer_.light_count() && lit != 0; ++li) {
-            unsigned facing = 0;  // with a light ray to try
-            for (unsigned m = lit; m != 0; m &= m - 1) {
-                const int k = lowest_bit(m);
-                b.light[k] = tracer_.light_ray(b.surface[k], li);
-                facing |= b.light[k].faces ? 1U << k : 0U;
-            }
+            const LightRay<L> r = light_ray(b.surface, Vec3<L>::from(tracer_.light_position(li)));
+            const unsigned facing = lit & static_cast<unsigned>(r.faces);  // with a light ray to try
             unsigned blocked = 0;
             for (unsigned left = facing; left != 0;) {
                 const unsigned bundle = close_lanes(b, left);
@@ -114,22 +129,18 @@ private:
                 blocked |= tracer_.geometry().occluded(b.point, tracer_.light_position(li), bundle,
                                                        scratch.tracer.blockers[li]);
             }
-            for (unsigned m = facing & ~blocked; m != 0; m &= m - 1) {
-                const int k = lowest_bit(m);
-                tracer_.add_light(b.colour[k], b.surface[k], li, b.light[k]);
-            }
+            add_light(b.colour, b.surface, r, Vec3<L>::from(tracer_.light_intensity(li)), b.finish,
+                      LaneBits(facing & ~blocked));
         }
         if (reflecting == 0) return hits;
         Bounce& next = scratch.bounces[static_cast<std::size_t>(depth) + 1];
+        const Vec3<L> onward = mirrored(b.surface.normal, direction);
         for (unsigned m = reflecting; m != 0; m &= m - 1) {
             const int k = lowest_bit(m);
-            next.origin[k] = b.point[k], next.direction[k] = Tracer::mirrored(b.surface[k], b.direction[k]);
+            next.origin[k] = b.point[k], next.direction[k] = lane(onward, k);
         }
         trace(depth + 1, reflecting, scratch);
-        for (unsigned m = reflecting; m != 0; m &= m - 1) {
-            const int k = lowest_bit(m);
-            b.colour[k] += next.colour[k] * b.surface[k].ellipsoid->kr;
-        }
+        b.colour = select(LaneBits(reflecting), b.colour + next.colour * b.kr, b.colour);
         return hits;
     }
 
@@ -142,10 +153,10 @@ private:
     static constexpr int kBundleLanes = 4;
     static unsigned close_lanes(const Bounce& b, unsigned lanes) {
         const int first = lowest_bit(lanes);
-        const Ellipsoid<Real>& e = *b.surface[first].ellipsoid;
+        const Ellipsoid<Real>& e = *b.ellipsoid[first];
         unsigned bundle = 0;
         for (unsigned m = lanes; m != 0; m &= m - 1)
-            bundle |= b.surface[lowest_bit(m)].ellipsoid == &e ? 1U << lowest_bit(m) : 0U;
+            bundle |= b.ellipsoid[lowest_bit(m)] == &e ? 1U << lowest_bit(m) : 0U;
         using C = AtLeastDouble<Real>;
         C lo[3], hi[3];
         bounds_of(b.point, bundle, lo, hi);

@@ -2,17 +2,20 @@
 // every array: the point, its normal, and per light L - P, N.L, R.V, the specular power
 // and the colour sums (SPEC section 5), and the mirrored directions.
 //
-// WHY: Tracer::shade() does this one ray at a time, a chain of dependent products,
-// square roots and divisions with branches in between. Neighbouring pixels mostly see
-// the same ellipsoid, so here the same chain runs over the pixels as flat loops over
-// fixed-size arrays, which GCC and Clang turn into vector instructions (8 doubles per
-// AVX-512 instruction). Each lane performs exactly shade()'s operations in shade()'s
-// order (listed at each step), lanes do not mix, and vector instructions round as scalar
-// ones do (no fused multiply-adds: CMakeLists.txt), so each pixel gets the same bits.
-// Where shade() skips a term (light behind, in shadow, R.V <= 0), the lane keeps its
-// sum by a select; no zero is added. Shadow rays are Tracer::shadow_lanes()'s (or
-// scalar, Tracer::hit_colours()), and what each mirrored ray hits is
-// Tracer::nearest_hits()'s.
+// WHY: the reference (shading.h, for one ray in whitted.h) is a chain of dependent
+// products, square roots and divisions with branches in between. Neighbouring pixels
+// mostly see the same ellipsoid, so here the same chain runs over the pixels as flat
+// loops over fixed-size arrays, which GCC and Clang turn into vector instructions (8
+// doubles per AVX-512 instruction). Each lane performs exactly shading.h's operations
+// in its order (named at each step), lanes do not mix, and vector instructions round as
+// scalar ones do (no fused multiply-adds: CMakeLists.txt), so each pixel gets the same
+// bits. Where the reference skips a term (light behind, in shadow, R.V <= 0), the lane
+// keeps its sum by a select; no zero is added.
+//
+// shading.h over Lanes (lanes.h), as the tree's tiles run it, measured 20-30% slower
+// here on the heavy scene (one thread): each Lanes operation is a loop of its own,
+// stored and loaded, where these loops keep a chain in registers. Shadow rays are Tracer::shadow_lanes()'s
+// (or scalar, Tracer::hit_colours()), and what each mirrored ray hits is Tracer::nearest_hits()'s.
 //
 // The loops with selects or a variable trip count around them (the sums, the whole
 // power, R.V) are marked RT_VECTOR_LOOP: GCC unrolled them completely first and then
@@ -24,6 +27,7 @@
 #include <cstdint>
 
 #include "raytracer/compiler.h"
+#include "raytracer/lanes.h"
 #include "raytracer/vec3.h"
 
 namespace rt {
@@ -43,22 +47,6 @@ inline constexpr int kPacket = 8;
 // split by the ellipsoid they hit. Heavy scene, counts of 1-4 rays: 2% of the eye
 // packets, 14%, 30% and 44% of those after the first, second and third bounce.
 inline constexpr int kNarrowestPacket = kPacket / 4;
-
-// The lanes' bits of an N-lane set, bit k for lane k, as a constant table: selects of
-// these rather than shifts by k let GCC vectorise the loops that build sets.
-template <int N>
-struct LaneBitTable {
-    std::uint64_t bit[N];
-};
-template <int N>
-constexpr LaneBitTable<N> make_lane_bits() {
-    static_assert(N <= 64, "one bit per lane");
-    LaneBitTable<N> table{};
-    for (int k = 0; k < N; ++k) table.bit[k] = std::uint64_t(1) << k;
-    return table;
-}
-template <int N>
-inline constexpr LaneBitTable<N> kLaneBits = make_lane_bits<N>();
 
 // The terms of one light for the lanes of a HitPacket (HitPacket::light()).
 template <typename Real, int Width = kPacket>
@@ -101,7 +89,7 @@ struct HitPacket {
         }
     }
 
-    // shade(): point = origin + direction * t; to_centre = point -
+    // surface_point(): point = origin + direction * t; to_centre = point -
     // centre; scaled = to_centre / s^2; scaled_length = length(scaled); normal = scaled *
     // (1 / scaled_length), negated when inside.
     void surface(const Vec3<Real>& centre, const Vec3<Real>& scale_squared) {
@@ -124,7 +112,8 @@ struct HitPacket {
         for (int k = 0; k < N; ++k) r[k] = ambient.x, g[k] = ambient.y, b[k] = ambient.z;
     }
 
-    // shade(): o = to_centre / scale; self_c = |o.o - 1|; the test holds outside and
+    // self_clear()'s terms: o = to_centre / scale; self_c = |o.o - 1| (as intersect()
+    // computes it); the test holds outside and
     // where self_c is a number.
     void self_terms(const Vec3<Real>& scale) {
         using std::abs;
@@ -135,7 +124,7 @@ struct HitPacket {
         }
     }
 
-    // shade(): to_viewer = normalize(-direction).
+    // surface_point(): to_viewer = normalize(-direction).
     void viewer() {
         using std::sqrt;
         for (int k = 0; k < N; ++k) {
@@ -145,7 +134,7 @@ struct HitPacket {
         }
     }
 
-    // shade(), per light: to_light = L - P; light_distance = length(to_light); l =
+    // light_ray(): to_light = L - P; light_distance = length(to_light); l =
     // to_light * (1 / light_distance); n_dot_l = dot(normal, l); front when n_dot_l > 0.
     // lit starts empty. False when no pixel has the light in front.
     bool light(const Vec3<Real>& position, Lanes& l) const {
@@ -176,8 +165,13 @@ struct HitPacket {
         return l.front != 0;
     }
 
-    // shade()'s self_clear for light l: the lanes where the own ellipsoid cannot block
-    // the shadow ray (see there). Only asked where the own ellipsoid is a candidate.
+    // The lanes where the own ellipsoid cannot block the shadow ray to light l. A point
+    // of an ellipsoid seen from outside, with the light in front (N.L > 0), leaves it at
+    // once, and the ellipsoid is convex: intersect() finds a root below 0 and one within
+    // |c| / b of 0, where c = o'.o' - 1 (0 but for rounding) and b = o'.d' >=
+    // |(P - C)/s^2| |L - P| (N.L - self_slack) (Cauchy-Schwarz on the rounding of each
+    // factor). Where that bound exceeds 2000 |c|, neither root is in (0.001, 1). Only
+    // asked where the own ellipsoid is a candidate.
     std::uint64_t self_clear(const Lanes& l, Real self_slack) const {
         std::uint64_t set = 0;
         RT_VECTOR_LOOP
@@ -190,7 +184,7 @@ struct HitPacket {
         return set;
     }
 
-    // shade(): colour += (Ip Kd * n_dot_l) * O where lit.
+    // add_light(): colour += (Ip Kd * n_dot_l) * O where lit.
     void add_diffuse(const Lanes& l, const Vec3<Real>& diffuse, const Vec3<Real>& colour) {
         const Real* const n_dot_l = l.n_dot_l;
         const std::uint64_t lit = l.lit;
@@ -204,7 +198,7 @@ struct HitPacket {
         }
     }
 
-    // shade(): reflected = normal * (2 * n_dot_l) - l; r_dot_v = dot(reflected,
+    // add_light(): reflected = normal * (2 * n_dot_l) - l; r_dot_v = dot(reflected,
     // to_viewer); colour += Ip Ks * r_dot_v^n where lit and r_dot_v > 0, the power by
     // whole_power() (power.h), the same multiplications in each lane.
     void specular_whole(const Lanes& l, const Vec3<Real>& specular, std::int32_t exponent) {
@@ -233,7 +227,7 @@ struct HitPacket {
         add_specular(l.lit, specular, r_dot_v, result);
     }
 
-    // reflection(): mirrored = direction - normal * (2 * dot(normal, direction)).
+    // mirrored(): direction - normal * (2 * dot(normal, direction)).
     void mirror(Real* x, Real* y, Real* z) const {
         for (int k = 0; k < N; ++k) {
             const Real twice = 2 * (nx[k] * dx[k] + ny[k] * dy[k] + nz[k] * dz[k]);
@@ -251,7 +245,7 @@ struct HitPacket {
         return set;
     }
 
-    // shade(): colour += seen * kr, for lane k.
+    // Whitted::shade(): colour += seen * kr, for lane k.
     void add(int k, const Vec3<Real>& term) { r[k] += term.x, g[k] += term.y, b[k] += term.z; }
 
 private:

@@ -68,7 +68,7 @@ public:
             light_positions.push_back(V::from(l.position));
         }
         // Per ellipsoid, the ambient term Ka*Ia*O (the same operations as per hit) and which
-        // terms are exactly zero (see shade()).
+        // terms are exactly zero (see hit_colours()).
         for (const Ellipsoid<Real>& e : ellipsoids_) {
             const bool no_specular = specular_is_zero(e);
             Surface surface{(ambient_ * e.ka) * e.colour, no_specular, no_specular && e.kd == 0, false, {},
@@ -85,7 +85,6 @@ public:
             for (const PointLight<Real>& l : lights_)
                 light_terms_.push_back({l.intensity * e.kd, l.intensity * e.ks});
         bounds_ = SphereBounds<Real>(ellipsoids_, light_positions);
-        bounds_.prepare(V{}, eye_terms_);  // every eye ray starts at the camera
         for (const Ellipsoid<Real>& e : ellipsoids_) eye_origin_.push_back(mapped_origin(e, V{}));
         // guarded: light buffers and packet shadows apply. Light buffers pay when there
         // are more shadow rays than cells, and are not built where their tables would be
@@ -112,8 +111,8 @@ public:
                           ellipsoids_.size() <= LightCones<C>::kMaxSpheres;
         // The light buffers serve the shadow rays tested one at a time; packets use
         // LightCones instead, so with them the buffers are not built (18 us of testIllum's
-        // set-up, 165 us of the heavy scene's): shade()'s rays, which only tests then
-        // cast, fall back on the bounding spheres, as exact.
+        // set-up, 165 us of the heavy scene's): in_shadow() without a buffer falls back
+        // on the bounding spheres, as exact.
         if (guarded && !packet_shadows_) build_grids();
         if (packet_shadows_) {
             const std::vector<BoundingSphere<C>> spheres = bounds_.spheres();
@@ -136,10 +135,6 @@ public:
         return s;
     }
 
-    // The colour seen along an eye ray from the origin (the camera) in this direction.
-    V trace_eye_ray(const V& direction, TraceScratch<Real>& scratch) const {
-        return trace(V{}, eye_terms_, direction, Real(kEyeRayMinT), kMaxReflections, background_, scratch);
-    }
     // Per ellipsoid, the pixels outside which no eye ray meets it (screen_bounds.h).
     std::vector<PixelRect> screen_rects(const Scene& scene) const {
         std::vector<bool> usable;
@@ -155,31 +150,17 @@ public:
         bool inside = false;  // the far root was taken: the ray sees the inner surface
     };
 
-    // The three bytes of a pixel whose eye ray (from the camera along direction) was found
-    // by the caller to hit ellipsoid i first at t (inside: the far root was taken), as
-    // to_byte() of trace_eye_ray(). For renderers that intersect eye rays themselves,
-    // e.g. many pixels at once, with the operations of intersect_mapped(). A surface that
-    // no light and no reflection changes (Kd = Ks = 0, Kr = 0) shows its ambient term
-    // alone, so its bytes are computed once per ellipsoid.
-    void eye_hit_pixel(std::uint32_t i, Real t, bool inside, const V& direction, TraceScratch<Real>& scratch,
-                       std::uint8_t* out) const {
-        const Surface& surface = surfaces_[i];
-        if (surface.flat) {
-            out[0] = surface.bytes[0], out[1] = surface.bytes[1], out[2] = surface.bytes[2];
-            return;
-        }
-        const V colour = shade(Hit{&ellipsoids_[i], t, inside}, V{}, direction, kMaxReflections, scratch);
-        out[0] = to_byte(colour.x), out[1] = to_byte(colour.y), out[2] = to_byte(colour.z);
-    }
     // Up to kPacket eye-ray hits on ellipsoid i at once: pixel k < count looks along
     // (dx[k], dy[k], dz[k]) and meets the ellipsoid first at t[k] (inside[k]: the far
-    // root); its three bytes go to out[k], exactly as eye_hit_pixel() writes them.
+    // root); its three bytes go to out[k], those the reference gives the pixel
+    // (Whitted::pixel(), whitted.h).
     //
-    // WHY: neighbouring pixels mostly see the same ellipsoid, and all of shade()'s
+    // WHY: neighbouring pixels mostly see the same ellipsoid, and all of the shading
     // arithmetic but the shadow rays is then the same chain of operations per pixel, run
     // here with the pixels as the lanes of vector instructions (hit_packet.h). Every lane
-    // does the operations of shade() in its order, and a term that shade() skips is not
-    // added (a select, not an addition of zero), so the bytes are the same.
+    // does the operations of the reference's shading (shading.h) in its order, and a
+    // term that it skips is not added (a select, not an addition of zero), so the bytes
+    // are the same.
     static constexpr int kPacket = rt::kPacket;
     void eye_hit_pixels(std::uint32_t i, int count, const Real* dx, const Real* dy, const Real* dz,
                         const Real* t, const bool* inside, TraceScratch<Real>& scratch,
@@ -196,7 +177,7 @@ public:
             out[k][0] = to_byte(colours[k].x), out[k][1] = to_byte(colours[k].y),
             out[k][2] = to_byte(colours[k].z);
     }
-    // The same as colours (shade()'s results, before conversion to bytes).
+    // The same as colours (before conversion to bytes).
     void eye_hit_colours(std::uint32_t i, int count, const Real* dx, const Real* dy, const Real* dz,
                          const Real* t, const bool* inside, TraceScratch<Real>& scratch, V* colours) const {
         const Real camera[kPacket] = {};
@@ -227,11 +208,6 @@ public:
     }
 
     const V& background() const { return background_; }
-    V trace_eye_ray(const V& direction) const {
-        TraceScratch<Real> scratch = make_scratch();
-        return trace_eye_ray(direction, scratch);
-    }
-
     // Only the ellipsoids the bounding spheres cannot rule out are intersected.
     Hit nearest_hit(const V& origin, const typename SphereBounds<Real>::OriginTerms& terms,
                     const V& direction, Real min_t, TraceScratch<Real>& scratch) const {
@@ -247,7 +223,7 @@ public:
     }
 
     // The nearest hits of kPacket rays with t > min_t, ray k from (ox, oy, oz)[k] along
-    // (dx, dy, dz)[k], as reflection() finds them (bounds_.candidates() from the ray's
+    // (dx, dy, dz)[k], as nearest_hit() finds them (bounds_.candidates() from the ray's
     // origin, then closest()): index[k] is the ellipsoid (kNone for none), t[k] its root,
     // inside[k] whether the far root was taken.
     //
@@ -353,7 +329,7 @@ private:
 
     // Cells per cube-face side of the light buffers (direction_grid.h).
     static constexpr int kGridCells = 16;
-    // The rounding allowance on N.L of the self-shadow test in shade().
+    // The rounding allowance on N.L of the self-shadow test (HitPacket::self_clear()).
     static constexpr Real kSelfSlack = Real(32) * std::numeric_limits<Real>::epsilon();
 
     // Whether rounding is far below the spheres' inflation (sphere_bounds.h) for the box
@@ -429,17 +405,11 @@ private:
         return blocks_segment(e, point, to_light);
     }
 
-    V trace(const V& origin, const typename SphereBounds<Real>::OriginTerms& terms, const V& direction,
-            Real min_t, int reflections_left, const V& miss, TraceScratch<Real>& scratch) const {
-        const Hit hit = nearest_hit(origin, terms, direction, min_t, scratch);
-        return hit.ellipsoid == nullptr ? miss : shade(hit, origin, direction, reflections_left, scratch);
-    }
-
-    // shade() for up to kPacket rays that hit ellipsoid i, ray k from (ox, oy, oz)[k]
-    // along (dx, dy, dz)[k] at t[k] (hit_packet.h): the same operations lane by lane;
-    // shadow rays are tested for all lanes at once where shadow_lanes() can, what the
-    // mirrored rays hit is found for all lanes at once (nearest_hits()), and the mirrored
-    // rays are shaded in packets again, grouped by the ellipsoid they hit.
+    // The colours (Whitted::shade(), whitted.h) of up to kPacket rays that hit ellipsoid i, ray k from (ox,
+    // oy, oz)[k] along (dx, dy, dz)[k] at t[k] (hit_packet.h): the same operations lane by lane; shadow rays
+    // are tested for all lanes at once where shadow_lanes() can, what the mirrored rays hit is found for all
+    // lanes at once (nearest_hits()), and the mirrored rays are shaded in packets again, grouped by the
+    // ellipsoid they hit.
     template <int N>
     void hit_colours(std::uint32_t i, int count, const Real* ox, const Real* oy, const Real* oz,
                      const Real* dx, const Real* dy, const Real* dz, const Real* t, const bool* inside,
@@ -447,7 +417,7 @@ private:
         const Surface& surface = surfaces_[i];
         const Ellipsoid<Real>& e = ellipsoids_[i];
         const bool reflects = e.kr > 0 && reflections_left > 0;
-        if (surface.no_lighting && !reflects) {  // shade() returns the ambient term
+        if (surface.no_lighting && !reflects) {  // the colour is the ambient term
             for (int k = 0; k < count; ++k) colours[k] = surface.ambient;
             return;
         }
@@ -654,7 +624,7 @@ private:
         return waiting;
     }
 
-    // reflection() for the rays of a packet; adds seen * kr to each lane's colour.
+    // The mirrored rays of a packet (Whitted::shade()); adds seen * kr to each lane's colour.
     template <int N>
     void reflections(HitPacket<Real, N>& p, Real kr, int reflections_left,
                      TraceScratch<Real>& scratch) const {
@@ -709,91 +679,6 @@ private:
         for (int k = 0; k < p.count; ++k) p.add(k, seen[k] * kr);
     }
 
-    // The colour of the surface hit by origin + t direction.
-    V shade(const Hit& hit, const V& origin, const V& direction, int reflections_left,
-            TraceScratch<Real>& scratch) const {
-        const Ellipsoid<Real>& e = *hit.ellipsoid;
-
-        // The terms are multiplied in the order the handout writes them: Ka*Ia*O, Kd*Ip*(N.L)*O
-        // and Ks*Ip*(R.V)^n; a different order moves a few pixels across a truncation step.
-        const Surface& surface = surfaces_[static_cast<std::size_t>(&e - ellipsoids_.data())];
-        V colour = surface.ambient;
-
-        // Shortcuts that change no output byte (each term skipped is exactly zero, and
-        // adding zero changes at most the sign of a zero channel, which prints as 0):
-        // - with Ks = 0 the specular term is zero (pow is finite here: R.V <= 1 + a few
-        //   ulps and 0 <= n <= 1e6), so no power is computed;
-        // - with Kd = 0 as well no light adds anything: no shadow ray at all;
-        // - a light behind the surface (N.L <= 0) adds nothing whether or not it is
-        //   blocked, so its shadow ray is cast only after that test (half the lights);
-        // - V (to the viewer) is needed only for a specular term.
-        const bool no_specular = surface.no_specular;
-        const bool no_lighting = surface.no_lighting;
-        const bool reflects = e.kr > 0 && reflections_left > 0;
-        if (no_lighting && !reflects) return colour;  // neither the point nor its normal is needed
-
-        const V point = origin + direction * hit.t;
-        // outward_normal(e, point), operation for operation, keeping |(P - C) / s^2|.
-        const V to_centre = point - e.centre;
-        const V scaled = to_centre / e.scale_squared;
-        const Real scaled_length = length(scaled);
-        V normal = scaled * (Real(1) / scaled_length);
-        if (hit.inside) normal = -normal;  // seen from inside: face the viewer
-        bool have_to_viewer = false;
-        V to_viewer;
-        // The shadow ray from a point of an ellipsoid, seen from outside, towards a light
-        // in front (N.L > 0) leaves it at once, and the ellipsoid is convex: intersect()
-        // finds a root below 0 and one within |c| / b of 0, where c = o'.o' - 1 (0 but for
-        // rounding; computed here as intersect() computes it) and b = o'.d' >=
-        // |(P - C)/s^2| |L - P| (N.L - 32 eps) (Cauchy-Schwarz on the rounding of each
-        // factor). Where that bound exceeds 2000 |c|, neither root is in (0.001, 1) and the
-        // ellipsoid is not tried.
-        Real self_c = 0;
-        bool self_test = !hit.inside && !no_lighting;
-        if (self_test) {
-            using std::abs;
-            const V o = to_centre / e.scale;  // as in intersect(): (origin - centre) / scale
-            self_c = abs(dot(o, o) - Real(1));
-            self_test = self_c == self_c;
-        }
-        const auto self = static_cast<std::uint32_t>(&e - ellipsoids_.data());
-        const LightTerms* terms = light_terms_.data() + std::size_t(self) * lights_.size();
-        for (std::size_t li = 0; li < lights_.size() && !no_lighting; ++li) {
-            const PointLight<Real>& light = lights_[li];
-            const V to_light = light.position - point;
-            const Real light_distance = length(to_light);
-            const V l = to_light * (Real(1) / light_distance);  // normalize(to_light)
-            const Real n_dot_l = dot(normal, l);
-            if (!(n_dot_l > 0)) continue;
-            const bool self_clear =
-                self_test && scaled_length * light_distance * (n_dot_l - kSelfSlack) > Real(2000) * self_c;
-            if (in_shadow(point, to_light, li, scratch, self_clear ? self : TraceScratch<Real>::kNone))
-                continue;
-            colour += (terms[li].diffuse * n_dot_l) * e.colour;
-            if (no_specular) continue;
-            if (!have_to_viewer) to_viewer = normalize(-direction), have_to_viewer = true;
-            const V reflected_light = normal * (2 * n_dot_l) - l;
-            const Real r_dot_v = dot(reflected_light, to_viewer);
-            if (r_dot_v > 0)
-                colour += terms[li].specular * specular_power(r_dot_v, e.shininess, surface.exponent);
-        }
-
-        if (reflects) colour += reflection(point, normal, direction, reflections_left, scratch) * e.kr;
-        return colour;
-    }
-
-    // What the mirror at point (unit normal facing the viewer) shows along direction.
-    V reflection(const V& point, const V& normal, const V& direction, int reflections_left,
-                 TraceScratch<Real>& scratch) const {
-        const V mirrored = direction - normal * (2 * dot(normal, direction));
-        const std::uint32_t* first = scratch.candidates.data();
-        const std::uint32_t* last =
-            first + bounds_.candidates(point, mirrored, scratch.candidates.data(), scratch.cull.data());
-        const Hit next = closest(first, last, point, mirrored, Real(kReflectedRayMinT));
-        // A reflected ray that hits nothing returns black, unlike an eye ray.
-        return next.ellipsoid == nullptr ? V{} : shade(next, point, mirrored, reflections_left - 1, scratch);
-    }
-
     std::vector<Ellipsoid<Real>> ellipsoids_;
     std::vector<PointLight<Real>> lights_;
     struct LightTerms {
@@ -810,7 +695,6 @@ private:
     };
     std::vector<Surface> surfaces_;  // per ellipsoid
     SphereBounds<Real> bounds_;
-    typename SphereBounds<Real>::OriginTerms eye_terms_;
     std::vector<MappedOrigin<Real>> eye_origin_;  // per ellipsoid, of the camera
     bool use_grids_ = false;
     bool packet_shadows_ = false;  // see shadow_lanes()

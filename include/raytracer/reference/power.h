@@ -17,6 +17,9 @@
 
 #include <cmath>
 #include <cstdint>
+#include <type_traits>
+
+#include "raytracer/lanes.h"
 
 namespace rt {
 
@@ -30,22 +33,30 @@ std::int32_t whole_exponent(Real n) {
     return Real(k) == n ? k : -1;
 }
 
-// x^k by binary exponentiation (right to left), k >= 0.
-template <typename Real>
-Real whole_power(Real x, std::int32_t k) {
-    Real result = 1;
-    for (; k != 0; k >>= 1) {
-        if (k & 1) result *= x;
-        x *= x;
+// x^k by binary exponentiation (right to left), k >= 0. For one ray (Real, int32) or
+// for lanes (lanes.h), each lane with its own k: a lane's product takes the factor only
+// where its own bit is set, so it is the scalar's product, bit for bit.
+template <typename T, typename K>
+RT_ALWAYS_INLINE T whole_power(T x, K k) {
+    T result = T(1);
+    for (; any(k != K(0)); k = k >> 1) {
+        result = select((k & K(1)) != K(0), result * x, result);
+        x = x * x;
     }
     return result;
 }
 
 // x^n, with k = whole_exponent(n) computed once per material.
-template <typename Real>
-Real specular_power(Real x, Real n, std::int32_t k) {
-    using std::pow;
-    return k >= 0 ? whole_power(x, k) : pow(x, n);
+template <typename T, typename K>
+RT_ALWAYS_INLINE T specular_power(T x, T n, K k) {
+    if constexpr (!std::is_arithmetic_v<K>) {
+        // One whole exponent in every lane (a packet on one ellipsoid): one loop for
+        // all, without a choice per lane.
+        if ((k != K(k[0])) == 0 && k[0] >= 0) return whole_power(x, k[0]);
+    }
+    const MaskOf<T> whole = k >= K(0), fractional = k < K(0);
+    const T power = whole_power(x, select(whole, k, K(0)));
+    return any(fractional) ? select(whole, power, pow_where(fractional, x, n)) : power;
 }
 
 }  // namespace rt

@@ -11,7 +11,7 @@
 
 #include "raytracer/image.h"
 #include "raytracer/reference/ellipsoid.h"
-#include "raytracer/reference/power.h"
+#include "raytracer/reference/shading.h"
 #include "raytracer/reference/spec_rules.h"
 #include "raytracer/scene.h"
 #include "raytracer/vec3.h"
@@ -40,8 +40,10 @@ public:
         for (std::uint32_t i = 0; i < scene.spheres.size(); ++i) {
             const Ellipsoid<Real>& e = geometry_.ellipsoid(i);
             const bool no_specular = specular_is_zero(e);  // with Kd = 0 too, no light adds anything
-            materials_.push_back({(ambient_ * e.ka) * e.colour, no_specular, no_specular && e.kd == 0,
-                                  whole_exponent(e.shininess)});
+            materials_.push_back(
+                {(ambient_ * e.ka) * e.colour,
+                 no_specular && e.kd == 0,
+                 {e.colour, e.kd, e.ks, e.shininess, whole_exponent(e.shininess), !no_specular}});
         }
     }
 
@@ -59,8 +61,12 @@ public:
 
     // The three bytes of the pixel whose eye ray goes from the camera through (x, y).
     void pixel(Real x, Real y, std::uint8_t* out, Scratch& scratch) const {
-        const V colour = trace({}, {x, y, near_z_}, kEyeRayMinT, kMaxReflections, background_, scratch);
+        const V colour = eye_ray_colour({x, y, near_z_}, scratch);
         out[0] = to_byte(colour.x), out[1] = to_byte(colour.y), out[2] = to_byte(colour.z);
+    }
+    // The colour seen from the camera along direction (before conversion to bytes).
+    V eye_ray_colour(const V& direction, Scratch& scratch) const {
+        return trace({}, direction, kEyeRayMinT, kMaxReflections, background_, scratch);
     }
 
     // trace(): the colour seen along origin + t direction beyond min_t; miss when
@@ -71,82 +77,37 @@ public:
         return hit.found() ? shade(hit, origin, direction, reflections_left, scratch) : miss;
     }
 
-    // The colour of the surface hit by origin + t direction. The terms are multiplied in
-    // the order the handout writes them: Ka*Ia*O, Kd*Ip*(N.L)*O and Ks*Ip*(R.V)^n; a
-    // different order moves a few pixels across a truncation step. A term that is
-    // exactly zero is skipped (adding it changes at most the sign of a zero channel).
+    // The colour of the surface hit by origin + t direction (shading.h).
     V shade(const NearestHit<Real>& hit, const V& origin, const V& direction, int reflections_left,
             Scratch& scratch) const {
-        const Surface s = surface(hit, origin, direction, reflections_left);
-        V colour = s.material->ambient;
-        for (std::size_t li = 0; li < lights_.size() && !s.material->no_lighting; ++li) {
-            const LightRay r = light_ray(s, li);
-            // A light behind the surface adds nothing, blocked or not.
+        const Ellipsoid<Real>& e = geometry_.ellipsoid(hit.ellipsoid);
+        const Material& m = materials_[hit.ellipsoid];
+        const SurfacePoint<Real> s =
+            surface_point(origin, direction, hit.t, hit.inside, e.centre, e.scale_squared);
+        V colour = m.ambient;
+        for (std::size_t li = 0; li < lights_.size() && !m.no_lighting; ++li) {
+            const LightRay<Real> r = light_ray(s, lights_[li].position);
             if (r.faces && !geometry_.occluded(s.point, r.to_light, scratch.blockers[li]))
-                add_light(colour, s, li, r);
+                add_light(colour, s, r, lights_[li].intensity, m.finish, true);
         }
-        if (s.reflects)
-            colour += trace(s.point, mirrored(s, direction), kReflectedRayMinT, reflections_left - 1, V{},
-                            scratch) *
-                      s.ellipsoid->kr;
+        if (e.kr > 0 && reflections_left > 0)
+            colour += trace(s.point, mirrored(s.normal, direction), kReflectedRayMinT, reflections_left - 1,
+                            V{}, scratch) *
+                      e.kr;
         return colour;
     }
 
-    // The pieces of shade(), for a driver that shades many hits at once (whitted_tiles.h).
+    // An ellipsoid's material: its ambient term and its Finish, for a driver that shades
+    // many hits at once (whitted_tiles.h).
     struct Material {
-        V ambient;              // Ka * Ia * O
-        bool no_specular;       // Ks = 0 (and pow finite)
-        bool no_lighting;       // Kd = Ks = 0
-        std::int32_t exponent;  // whole_exponent(n): -1 when pow() is needed
+        V ambient;         // Ka * Ia * O
+        bool no_lighting;  // Kd = Ks = 0: no light adds anything
+        Finish<Real> finish;
     };
-    struct Surface {
-        const Ellipsoid<Real>* ellipsoid;
-        const Material* material;
-        V point, normal, to_viewer;  // the normal faces the viewer
-        bool reflects;               // a reflected ray is traced
-    };
-    Surface surface(const NearestHit<Real>& hit, const V& origin, const V& direction,
-                    int reflections_left) const {
-        Surface s;
-        s.ellipsoid = &geometry_.ellipsoid(hit.ellipsoid);
-        s.material = &materials_[hit.ellipsoid];
-        s.point = origin + direction * hit.t;
-        s.normal = normalize((s.point - s.ellipsoid->centre) / s.ellipsoid->scale_squared);
-        if (hit.inside) s.normal = -s.normal;  // seen from inside: face the viewer
-        s.to_viewer = normalize(-direction);
-        s.reflects = s.ellipsoid->kr > 0 && reflections_left > 0;
-        return s;
-    }
-    struct LightRay {
-        V to_light;  // the light at t = 1
-        V l;         // unit
-        Real n_dot_l;
-        bool faces;  // N.L > 0
-    };
-    LightRay light_ray(const Surface& s, std::size_t li) const {
-        LightRay r;
-        r.to_light = lights_[li].position - s.point;
-        r.l = normalize(r.to_light);
-        r.n_dot_l = dot(s.normal, r.l);
-        r.faces = r.n_dot_l > 0;
-        return r;
-    }
-    // The diffuse and specular terms of an unblocked light.
-    void add_light(V& colour, const Surface& s, std::size_t li, const LightRay& r) const {
-        const Light& light = lights_[li];
-        const Ellipsoid<Real>& e = *s.ellipsoid;
-        colour += light.intensity * e.kd * r.n_dot_l * e.colour;
-        if (s.material->no_specular) return;
-        const V reflected_light = s.normal * (2 * r.n_dot_l) - r.l;
-        const Real r_dot_v = dot(reflected_light, s.to_viewer);
-        if (r_dot_v > 0)
-            colour += light.intensity * e.ks * specular_power(r_dot_v, e.shininess, s.material->exponent);
-    }
-    static V mirrored(const Surface& s, const V& direction) {
-        return direction - s.normal * (2 * dot(s.normal, direction));
-    }
+    const Material& material(std::uint32_t i) const { return materials_[i]; }
     std::size_t light_count() const { return lights_.size(); }
     const V& light_position(std::size_t li) const { return lights_[li].position; }
+    const V& light_intensity(std::size_t li) const { return lights_[li].intensity; }
     const Geometry& geometry() const { return geometry_; }
     const V& background() const { return background_; }
     Real near_z() const { return near_z_; }

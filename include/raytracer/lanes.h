@@ -1,0 +1,171 @@
+// Lanes<Real, N>: N numbers, one per ray, with a scalar's arithmetic done lane by lane,
+// so that one piece of shading code (shading.h) runs for one ray (T = double) or for
+// the N rays of a tile (T = Lanes<double, 16>) and gives each lane the scalar's bits.
+//
+// Each operator is one flat loop over the lanes, which GCC and Clang turn into vector
+// instructions (16 doubles in two AVX-512 registers); a lane's value is the scalar
+// operation on that lane's operands, rounded as a scalar one (no fused multiply-adds:
+// CMakeLists.txt). A comparison gives a mask, bit k for lane k; where code for one ray
+// branches, code over lanes selects (select(), any()), so a lane never gets a term its
+// scalar run would have skipped, and never an addition of zero in its place.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <type_traits>
+
+#include "raytracer/compiler.h"
+#include "raytracer/vec3.h"
+
+namespace rt {
+
+// The lanes' bits of an N-lane set, bit k for lane k, as a constant table: selects of
+// these rather than shifts by k let GCC vectorise the loops that build sets (64 bits
+// like a lane of doubles).
+using LaneBits = std::uint64_t;
+template <int N>
+struct LaneBitTable {
+    LaneBits bit[N];
+};
+template <int N>
+constexpr LaneBitTable<N> make_lane_bits() {
+    static_assert(N <= 64, "one bit per lane");
+    LaneBitTable<N> table{};
+    for (int k = 0; k < N; ++k) table.bit[k] = LaneBits(1) << k;
+    return table;
+}
+template <int N>
+inline constexpr LaneBitTable<N> kLaneBits = make_lane_bits<N>();
+
+template <typename Real, int N>
+struct Lanes {
+    Real lane[N];
+
+    Lanes() = default;
+    // A constant, the same in every lane: T(1) in code written for T = Real or Lanes.
+    RT_ALWAYS_INLINE Lanes(Real x) {  // NOLINT(google-explicit-constructor): as a scalar converts
+        RT_VECTOR_LOOP
+        for (int k = 0; k < N; ++k) lane[k] = x;
+    }
+    Real& operator[](int k) { return lane[k]; }
+    const Real& operator[](int k) const { return lane[k]; }
+
+    // Lane by lane: r[k] = op(a[k], b[k]).
+    template <typename Op>
+    RT_ALWAYS_INLINE static Lanes map(const Lanes& a, const Lanes& b, Op op) {
+        Lanes r;
+        RT_VECTOR_LOOP
+        for (int k = 0; k < N; ++k) r.lane[k] = op(a.lane[k], b.lane[k]);
+        return r;
+    }
+    // The lanes where a[k] op b[k] holds, as bits.
+    template <typename Op>
+    RT_ALWAYS_INLINE static LaneBits where(const Lanes& a, const Lanes& b, Op op) {
+        LaneBits set = 0;
+        RT_VECTOR_LOOP
+        for (int k = 0; k < N; ++k) set |= op(a.lane[k], b.lane[k]) ? kLaneBits<N>.bit[k] : 0;
+        return set;
+    }
+
+    RT_ALWAYS_INLINE friend Lanes operator+(const Lanes& a, const Lanes& b) {
+        return map(a, b, std::plus<>());
+    }
+    RT_ALWAYS_INLINE friend Lanes operator-(const Lanes& a, const Lanes& b) {
+        return map(a, b, std::minus<>());
+    }
+    RT_ALWAYS_INLINE friend Lanes operator*(const Lanes& a, const Lanes& b) {
+        return map(a, b, std::multiplies<>());
+    }
+    RT_ALWAYS_INLINE friend Lanes operator/(const Lanes& a, const Lanes& b) {
+        return map(a, b, std::divides<>());
+    }
+    RT_ALWAYS_INLINE friend Lanes operator&(const Lanes& a, const Lanes& b) {
+        return map(a, b, std::bit_and<>());
+    }
+    RT_ALWAYS_INLINE friend Lanes operator-(const Lanes& a) {
+        return map(a, a, [](Real x, Real) { return -x; });
+    }
+    RT_ALWAYS_INLINE friend Lanes operator>>(const Lanes& a, int s) {
+        return map(a, a, [s](Real x, Real) { return x >> s; });
+    }
+
+    RT_ALWAYS_INLINE friend LaneBits operator>(const Lanes& a, const Lanes& b) {
+        return where(a, b, std::greater<>());
+    }
+    RT_ALWAYS_INLINE friend LaneBits operator>=(const Lanes& a, const Lanes& b) {
+        return where(a, b, std::greater_equal<>());
+    }
+    RT_ALWAYS_INLINE friend LaneBits operator<(const Lanes& a, const Lanes& b) {
+        return where(a, b, std::less<>());
+    }
+    RT_ALWAYS_INLINE friend LaneBits operator!=(const Lanes& a, const Lanes& b) {
+        return where(a, b, std::not_equal_to<>());
+    }
+
+    RT_ALWAYS_INLINE friend Lanes sqrt(const Lanes& a) {
+        using std::sqrt;
+        return map(a, a, [](Real x, Real) { return sqrt(x); });
+    }
+    // std::pow in each lane of where (the others are 0): pow() has no vector form.
+    RT_ALWAYS_INLINE friend Lanes pow_where(LaneBits where, const Lanes& x, const Lanes& n) {
+        using std::pow;
+        Lanes r(Real(0));
+        for (int k = 0; k < N; ++k)
+            if ((where >> k) & 1U) r.lane[k] = pow(x.lane[k], n.lane[k]);
+        return r;
+    }
+    // The same choice for every lane (a mask of one ray).
+    RT_ALWAYS_INLINE friend Lanes select(bool where, const Lanes& a, const Lanes& b) { return where ? a : b; }
+    // r[k] = bit k of where ? a[k] : b[k].
+    RT_ALWAYS_INLINE friend Lanes select(LaneBits where, const Lanes& a, const Lanes& b) {
+        Lanes r;
+        RT_VECTOR_LOOP
+        for (int k = 0; k < N; ++k) r.lane[k] = (where & kLaneBits<N>.bit[k]) != 0 ? a.lane[k] : b.lane[k];
+        return r;
+    }
+};
+
+// The same names for one ray: a mask is a bool (or the int of bool & bool).
+template <typename Real, typename = std::enable_if_t<std::is_arithmetic_v<Real>>>
+RT_ALWAYS_INLINE Real select(bool where, Real a, Real b) {
+    return where ? a : b;
+}
+template <typename Real, typename = std::enable_if_t<std::is_arithmetic_v<Real>>>
+Real pow_where(bool where, Real x, Real n) {
+    using std::pow;
+    return where ? pow(x, n) : Real(0);
+}
+inline bool any(bool where) { return where; }
+inline bool any(LaneBits where) { return where != 0; }
+
+// A vector's select, lane k of a Vec3 of lanes, and a vector the same in every lane.
+template <typename Mask, typename T>
+RT_ALWAYS_INLINE Vec3<T> select(Mask where, const Vec3<T>& a, const Vec3<T>& b) {
+    return {select(where, a.x, b.x), select(where, a.y, b.y), select(where, a.z, b.z)};
+}
+template <typename Real, int N>
+Vec3<Real> lane(const Vec3<Lanes<Real, N>>& v, int k) {
+    return {v.x[k], v.y[k], v.z[k]};
+}
+template <typename Real, int N>
+void set_lane(Vec3<Lanes<Real, N>>& v, int k, const Vec3<Real>& value) {
+    v.x[k] = value.x, v.y[k] = value.y, v.z[k] = value.z;
+}
+
+// The mask a comparison of two T gives: bool for one ray, LaneBits for lanes; and the
+// integers that go with T (a whole exponent per ray).
+template <typename T>
+using MaskOf = decltype(T() > T());
+template <typename T>
+struct IntegerOfT {
+    using type = std::int32_t;
+};
+template <typename Real, int N>
+struct IntegerOfT<Lanes<Real, N>> {
+    using type = Lanes<std::int32_t, N>;
+};
+template <typename T>
+using IntegerOf = typename IntegerOfT<T>::type;
+
+}  // namespace rt

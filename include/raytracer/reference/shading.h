@@ -1,0 +1,104 @@
+// The shading arithmetic of SPEC section 5, written once for one ray (T = Real: the
+// reference, whitted.h) and for the lanes of a tile (T = Lanes<Real, N>, lanes.h:
+// whitted_tiles.h): a hit's point, normal and direction to the viewer, a light's ray,
+// and the diffuse and specular terms of a light that reaches the point. The same
+// operations in the same order, so a lane's colour is the scalar's, bit for bit.
+//
+// The terms are multiplied in the order the handout writes them: Ka*Ia*O, Kd*Ip*(N.L)*O
+// and Ks*Ip*(R.V)^n; a different order moves a few pixels across a truncation step. A
+// term that is exactly zero is not added (adding it changes at most the sign of a zero
+// channel): a select, where lanes would branch.
+#pragma once
+
+#include "raytracer/compiler.h"
+#include "raytracer/lanes.h"
+#include "raytracer/reference/power.h"
+#include "raytracer/vec3.h"
+
+namespace rt {
+
+// What shading needs of an ellipsoid's material, per ray for lanes.
+template <typename T>
+struct Finish {
+    Vec3<T> colour;         // O
+    T kd, ks, shininess;    // Kd, Ks, n
+    IntegerOf<T> exponent;  // whole_exponent(n): -1 where pow() is needed
+    MaskOf<T> specular;     // not specular_is_zero(): a specular term may show
+};
+
+// A material in every lane, and in lane k of a tile's.
+template <int N, typename Real>
+Finish<Lanes<Real, N>> in_every_lane(const Finish<Real>& f) {
+    return {Vec3<Lanes<Real, N>>::from(f.colour), f.kd, f.ks, f.shininess, f.exponent,
+            f.specular ? ~LaneBits(0) : 0};
+}
+template <int N, typename Real>
+void set_lane(Finish<Lanes<Real, N>>& lanes, int k, const Finish<Real>& f) {
+    set_lane(lanes.colour, k, f.colour);
+    lanes.kd[k] = f.kd, lanes.ks[k] = f.ks, lanes.shininess[k] = f.shininess, lanes.exponent[k] = f.exponent;
+    lanes.specular = (lanes.specular & ~kLaneBits<N>.bit[k]) | (f.specular ? kLaneBits<N>.bit[k] : 0);
+}
+
+// A ray's hit: the point, the unit normal facing the viewer, and normalize(-direction).
+template <typename T>
+struct SurfacePoint {
+    Vec3<T> point, normal, to_viewer;
+};
+
+// The hit at origin + t direction on the ellipsoid of centre and scale^2; inside: the
+// far root was taken, the ray sees the inner surface.
+template <typename T>
+RT_ALWAYS_INLINE SurfacePoint<T> surface_point(const Vec3<T>& origin, const Vec3<T>& direction, const T& t,
+                                               MaskOf<T> inside, const Vec3<T>& centre,
+                                               const Vec3<T>& scale_squared) {
+    SurfacePoint<T> s;
+    s.point = origin + direction * t;
+    const Vec3<T> outward = normalize((s.point - centre) / scale_squared);
+    s.normal = select(inside, -outward, outward);  // seen from inside: face the viewer
+    s.to_viewer = normalize(-direction);
+    return s;
+}
+
+// The ray from a hit to a light (at t = 1), its unit direction L and N.L.
+template <typename T>
+struct LightRay {
+    Vec3<T> to_light, l;
+    T distance;  // |L - P|
+    T n_dot_l;
+    MaskOf<T> faces;  // N.L > 0: a light behind the surface adds nothing, blocked or not
+};
+
+template <typename T>
+RT_ALWAYS_INLINE LightRay<T> light_ray(const SurfacePoint<T>& s, const Vec3<T>& light) {
+    LightRay<T> r;
+    r.to_light = light - s.point;
+    r.distance = length(r.to_light);
+    r.l = r.to_light * (T(1) / r.distance);  // normalize()
+    r.n_dot_l = dot(s.normal, r.l);
+    r.faces = r.n_dot_l > T(0);
+    return r;
+}
+
+// colour += the diffuse and specular terms of a light of this intensity, where it
+// reaches the point (lit: it faces the surface and nothing blocks it).
+template <typename T>
+RT_ALWAYS_INLINE void add_light(Vec3<T>& colour, const SurfacePoint<T>& s, const LightRay<T>& r,
+                                const Vec3<T>& intensity, const Finish<T>& f, MaskOf<T> lit) {
+    colour = select(lit, colour + intensity * f.kd * r.n_dot_l * f.colour, colour);
+    const MaskOf<T> may_shine = lit & f.specular;
+    if (!any(may_shine)) return;
+    const Vec3<T> reflected_light = s.normal * (T(2) * r.n_dot_l) - r.l;
+    const T r_dot_v = dot(reflected_light, s.to_viewer);
+    const MaskOf<T> shines = may_shine & (r_dot_v > T(0));
+    if (!any(shines)) return;
+    colour =
+        select(shines, colour + intensity * f.ks * specular_power(r_dot_v, f.shininess, f.exponent), colour);
+}
+
+// The direction a mirror of this unit normal sends a ray along direction.
+template <typename T>
+RT_ALWAYS_INLINE Vec3<T> mirrored(const Vec3<T>& normal, const Vec3<T>& direction) {
+    return direction - normal * (T(2) * dot(normal, direction));
+}
+
+}  // namespace rt
