@@ -44,7 +44,7 @@ struct Lanes {
 
     Lanes() = default;
     // A constant, the same in every lane: T(1) in code written for T = Real or Lanes.
-    RT_ALWAYS_INLINE Lanes(Real x) {  // NOLINT(google-explicit-constructor): as a scalar converts
+    RT_ALWAYS_INLINE Lanes(Real x) {  // implicit, as a scalar converts to a wider one
         RT_VECTOR_LOOP
         for (int k = 0; k < N; ++k) lane[k] = x;
     }

@@ -94,7 +94,7 @@ private:
         const bool may_reflect = depth < kMaxReflections;
         unsigned hits = 0, lit = 0, reflecting = 0;
         Vec3<L> origin, direction, centre, scale_squared, ambient;
-        L t;
+        L t(Real(0));
         LaneBits inside = 0;
         for (unsigned m = lanes; m != 0; m &= m - 1) {  // gather each hit's terms into its lane
             const int k = lowest_bit(m);
