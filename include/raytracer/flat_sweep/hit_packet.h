@@ -25,6 +25,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <type_traits>
 
 #include "raytracer/compiler.h"
 #include "raytracer/lanes.h"
@@ -47,6 +48,18 @@ inline constexpr int kPacket = 8;
 // split by the ellipsoid they hit. Heavy scene, counts of 1-4 rays: 2% of the eye
 // packets, 14%, 30% and 44% of those after the first, second and third bounce.
 inline constexpr int kNarrowestPacket = kPacket / 4;
+
+// Calls shade(std::integral_constant<int, width>) with the narrowest packet width that
+// holds count rays.
+template <typename Shade>
+void packet_width(int count, Shade shade) {
+    if (count <= kNarrowestPacket)
+        shade(std::integral_constant<int, kNarrowestPacket>{});
+    else if (count <= kPacket / 2)
+        shade(std::integral_constant<int, kPacket / 2>{});
+    else
+        shade(std::integral_constant<int, kPacket>{});
+}
 
 // The terms of one light for the lanes of a HitPacket (HitPacket::light()).
 template <typename Real, int Width = kPacket>

@@ -10,8 +10,6 @@
 #include <type_traits>
 #include <vector>
 
-#include "raytracer/accel/intersect_lanes.h"
-#include "raytracer/bit_scan.h"
 #include "raytracer/compiler.h"
 #include "raytracer/flat_sweep/direction_grid.h"
 #include "raytracer/flat_sweep/enclosures.h"
@@ -181,7 +179,7 @@ public:
     void eye_hit_colours(std::uint32_t i, int count, const Real* dx, const Real* dy, const Real* dz,
                          const Real* t, const bool* inside, TraceScratch<Real>& scratch, V* colours) const {
         const Real camera[kPacket] = {};
-        by_width(count, [&](auto width) {
+        packet_width(count, [&](auto width) {
             hit_colours<decltype(width)::value>(i, count, camera, camera, camera, dx, dy, dz, t, inside,
                                                 kMaxReflections, scratch, colours);
         });
@@ -222,54 +220,12 @@ public:
         return nearest_hit(origin, scratch.origin, direction, min_t, scratch);
     }
 
-    // The nearest hits of kPacket rays with t > min_t, ray k from (ox, oy, oz)[k] along
-    // (dx, dy, dz)[k], as nearest_hit() finds them (bounds_.candidates() from the ray's
-    // origin, then closest()): index[k] is the ellipsoid (kNone for none), t[k] its root,
-    // inside[k] whether the far root was taken.
-    //
-    // WHY: one culling pass over the bounding spheres for all rays
-    // (SphereBounds::candidate_lanes()), and each ellipsoid some ray may hit intersected
-    // for all lanes at once (intersect_lanes()), in vector instructions. Each lane gets
-    // the roots intersect() gives, for exactly the ellipsoids its own culling leaves,
-    // taken in increasing order by closest()'s rule: the same hit, t and flag.
+    // The nearest hits of N rays at once, each as nearest_hit() finds it
+    // (packet_shading.h).
     template <int N = kPacket>
     void nearest_hits(const Real* ox, const Real* oy, const Real* oz, const Real* dx, const Real* dy,
                       const Real* dz, Real min_t, TraceScratch<Real>& scratch, std::uint32_t* index, Real* t,
-                      bool* inside) const {
-        std::uint32_t* lanes = scratch.lanes.data();
-        // The ellipsoids that some ray may hit, in increasing order.
-        const std::uint32_t* some_ray = scratch.candidates.data();
-        const std::size_t count = bounds_.template candidate_lanes<N>(
-            ox, oy, oz, dx, dy, dz, lanes, scratch.candidates.data(), scratch.cull.data());
-        min_t = visible_beyond(min_t);  // as in closest()
-        Real best[N], found[N], far_root[N];
-        for (int k = 0; k < N; ++k)
-            best[k] = 0, found[k] = 0, far_root[k] = 0, index[k] = TraceScratch<Real>::kNone;
-        for (std::size_t a = 0; a < count; ++a) {
-            const std::uint32_t i = some_ray[a];
-            const std::uint32_t set = lanes[i];
-            Real hit[N], near[N], far[N], take[N], listed[N];
-            intersect_lanes<N>(ellipsoids_[i], ox, oy, oz, dx, dy, dz, hit, near, far);
-            RT_VECTOR_LOOP
-            for (int k = 0; k < N; ++k) listed[k] = (set & kLaneBits<N>.bit[k]) != 0 ? Real(1) : Real(0);
-            // closest(): inside = !(near > min_t); t = inside ? far : near; taken when
-            // t > min_t and nothing nearer was found. (Products of 0/1 masks rather than
-            // && and bools, which keep GCC's loop scalar.)
-            RT_VECTOR_LOOP
-            for (int k = 0; k < N; ++k) {
-                const Real beyond = near[k] > min_t ? Real(1) : Real(0);
-                const Real root = beyond != 0 ? near[k] : far[k];
-                const Real nearer = found[k] == 0 ? Real(1) : (root < best[k] ? Real(1) : Real(0));
-                const Real taken = listed[k] * hit[k] * (root > min_t ? Real(1) : Real(0)) * nearer;
-                take[k] = taken;
-                best[k] = taken != 0 ? root : best[k];
-                far_root[k] = taken != 0 ? Real(1) - beyond : far_root[k];
-                found[k] = taken != 0 ? Real(1) : found[k];
-            }
-            for (int k = 0; k < N; ++k) index[k] = take[k] != 0 ? std::uint32_t(i) : index[k];
-        }
-        for (int k = 0; k < N; ++k) t[k] = best[k], inside[k] = far_root[k] != 0;
-    }
+                      bool* inside) const;
 
     // A light is blocked when any ellipsoid lies on the segment from the point to it.
     // The direction is light - point, not normalised, so the light is at t = 1.
@@ -315,18 +271,6 @@ public:
     }
 
 private:
-    // Calls shade(std::integral_constant<int, width>) with the narrowest packet width
-    // that holds count rays (see kNarrowestPacket).
-    template <typename Shade>
-    static void by_width(int count, Shade shade) {
-        if (count <= kNarrowestPacket)
-            shade(std::integral_constant<int, kNarrowestPacket>{});
-        else if (count <= kPacket / 2)
-            shade(std::integral_constant<int, kPacket / 2>{});
-        else
-            shade(std::integral_constant<int, kPacket>{});
-    }
-
     // Cells per cube-face side of the light buffers (direction_grid.h).
     static constexpr int kGridCells = 16;
     // The rounding allowance on N.L of the self-shadow test (HitPacket::self_clear()).
@@ -405,279 +349,20 @@ private:
         return blocks_segment(e, point, to_light);
     }
 
-    // The colours (Whitted::shade(), whitted.h) of up to kPacket rays that hit ellipsoid i, ray k from (ox,
-    // oy, oz)[k] along (dx, dy, dz)[k] at t[k] (hit_packet.h): the same operations lane by lane; shadow rays
-    // are tested for all lanes at once where shadow_lanes() can, what the mirrored rays hit is found for all
-    // lanes at once (nearest_hits()), and the mirrored rays are shaded in packets again, grouped by the
-    // ellipsoid they hit.
+    // The packets, in packet_shading.h: the colours of up to N hits on one ellipsoid,
+    // their shadow rays to one light, their mirrored rays.
     template <int N>
     void hit_colours(std::uint32_t i, int count, const Real* ox, const Real* oy, const Real* oz,
                      const Real* dx, const Real* dy, const Real* dz, const Real* t, const bool* inside,
-                     int reflections_left, TraceScratch<Real>& scratch, V* colours) const {
-        const Surface& surface = surfaces_[i];
-        const Ellipsoid<Real>& e = ellipsoids_[i];
-        const bool reflects = e.kr > 0 && reflections_left > 0;
-        if (surface.no_lighting && !reflects) {  // the colour is the ambient term
-            for (int k = 0; k < count; ++k) colours[k] = surface.ambient;
-            return;
-        }
-        HitPacket<Real, N> p;
-        p.load(count, ox, oy, oz, dx, dy, dz, t, inside);
-        p.start_colour(surface.ambient);
-        p.surface(e.centre, e.scale_squared);
-        if (!surface.no_lighting) {
-            p.self_terms(e.scale);
-            if (!surface.no_specular) p.viewer();
-            const LightTerms* terms = light_terms_.data() + std::size_t(i) * lights_.size();
-            // The lanes whose points lie within the own ellipsoid for Enclosures, once for
-            // all lights (the mirror room's points are on it, so within it for every light
-            // it encloses).
-            std::uint64_t self_within = 0;
-            // Whether every lane's point lies in the ellipsoid's bounding sphere, so that
-            // pair_blockers_'s sets apply (hit points lie on the ellipsoid: always, but
-            // checked, as the sets' argument needs it).
-            bool in_sphere = false;
-            // A ball around the points, for LightCones::packet().
-            typename LightCones<C>::Ball ball;
-            if constexpr (std::is_same_v<C, Real>) {
-                if (packet_shadows_) {
-                    ball = LightCones<C>::template ball<N>(p.px, p.py, p.pz);
-                    const BoundingSphere<C> b = bounds_.sphere(i);
-                    const C radius2 = b.radius * b.radius;
-                    std::uint64_t outside = 0;  // NaN points count as outside
-                    RT_VECTOR_LOOP
-                    for (int k = 0; k < N; ++k) {
-                        const C x = p.px[k] - b.x, y = p.py[k] - b.y, z = p.pz[k] - b.z;
-                        outside |= x * x + y * y + z * z <= radius2 ? 0 : kLaneBits<N>.bit[k];
-                    }
-                    in_sphere = outside == 0;
-                }
-                if (packet_shadows_ && enclosures_.encloses_a_light(i))
-                    self_within =
-                        enclosures_.template points_within<N>(p.px, p.py, p.pz, i, kLaneBits<N>.bit);
-            }
-            // The lights in batches: first each light's terms (independent chains of
-            // square roots and divisions, which overlap), then the shadow rays, then the
-            // sums in the order of the lights.
-            constexpr std::size_t kBatch = 4;
-            LightLanes<Real, N> batch[kBatch];
-            bool lit_any[kBatch];
-            for (std::size_t first = 0; first < lights_.size(); first += kBatch) {
-                const std::size_t size = std::min(kBatch, lights_.size() - first);
-                for (std::size_t b = 0; b < size; ++b)  // false: behind every ray's point
-                    lit_any[b] = p.light(lights_[first + b].position, batch[b]);
-                // Per light, the ellipsoids that some segment from the packet's ball to it
-                // may meet (also independent chains).
-                std::uint64_t may_block[kBatch] = {};
-                if constexpr (std::is_same_v<C, Real>) {
-                    if (packet_shadows_)
-                        for (std::size_t b = 0; b < size; ++b) {
-                            const std::size_t li = first + b;
-                            if (lit_any[b])
-                                may_block[b] = light_cones_.packet(
-                                    li, lights_[li].position, ball,
-                                    in_sphere ? pair_blockers_.set(i, li) : ~std::uint64_t(0));
-                        }
-                }
-                for (std::size_t b = 0; b < size; ++b) {
-                    if (!lit_any[b]) continue;
-                    const std::size_t li = first + b;
-                    LightLanes<Real, N>& l = batch[b];
-                    if constexpr (std::is_same_v<C, Real>) {
-                        if (packet_shadows_) {
-                            lit_any[b] = shadow_lanes(p, l, i, li, may_block[b], self_within, scratch) != 0;
-                            continue;
-                        }
-                    }
-                    // The lanes' cells in the light buffer at once: point - light = -(L - P)
-                    // exactly, so these are the cells in_shadow() would find (in double or
-                    // wider; float's buffers are looked up in double from the point).
-                    std::int32_t cells[N];
-                    for (std::int32_t& c : cells) c = -1;
-                    if constexpr (std::is_same_v<C, Real>) {
-                        if (use_grids_) {
-                            Real fx[N], fy[N], fz[N];
-                            for (int k = 0; k < N; ++k) fx[k] = -l.tx[k], fy[k] = -l.ty[k], fz[k] = -l.tz[k];
-                            light_grids_[li].template cells<N>(fx, fy, fz, cells);
-                        }
-                    }
-                    const std::uint64_t self_clear = p.self_clear(l, kSelfSlack);
-                    for (int k = 0; k < count; ++k) {
-                        if ((l.front & kLaneBits<N>.bit[k]) == 0) continue;
-                        const V point{p.px[k], p.py[k], p.pz[k]}, to_light{l.tx[k], l.ty[k], l.tz[k]};
-                        const bool shadowed =
-                            in_shadow(point, to_light, li, scratch,
-                                      (self_clear & kLaneBits<N>.bit[k]) != 0 ? i : TraceScratch<Real>::kNone,
-                                      cells[k]);
-                        if (!shadowed) l.lit |= kLaneBits<N>.bit[k];
-                    }
-                }
-                for (std::size_t b = 0; b < size; ++b) {
-                    // No lane lit: the sums would keep every lane's colour (selects).
-                    if (!lit_any[b]) continue;
-                    const std::size_t li = first + b;
-                    p.add_diffuse(batch[b], terms[li].diffuse, e.colour);
-                    if (surface.no_specular) continue;
-                    if (surface.exponent >= 0) {
-                        p.specular_whole(batch[b], terms[li].specular, surface.exponent);
-                    } else {
-                        p.specular_pow(batch[b], terms[li].specular, e.shininess);
-                    }
-                }
-            }
-        }
-        if (reflects) reflections(p, e.kr, reflections_left, scratch);
-        for (int k = 0; k < count; ++k) colours[k] = {p.r[k], p.g[k], p.b[k]};
-    }
+                     int reflections_left, TraceScratch<Real>& scratch, V* colours) const;
 
-    // in_shadow() for the lanes of a packet with light li in front (l.front); sets l.lit
-    // to the lanes not shadowed and returns them. Used where packet_shadows_ holds.
-    //
-    // WHY: in_shadow() tries the ellipsoids of the lane's cell one lane at a time, each
-    // with decide()'s branches. Here each candidate ellipsoid is tried on all lanes at
-    // once with decide_lanes() (vector instructions), and intersect() runs only for the
-    // rare lanes it is unsure about. A lane is shadowed when SOME ellipsoid blocks its
-    // segment, and each test gives intersect()'s exact answer, so the order of the tries
-    // does not matter; a lane is left untried only for ellipsoids that cannot block it
-    // (outside its segment's cone, LightCones::lanes(), or ruled out for the whole
-    // packet, below; the self ellipsoid where self_clear; those that enclose light and
-    // point), so each lane gets the unculled renderer's boolean: the same bytes.
-    // may_block: the ellipsoids that can block some lane at all (PairBlockers, then
-    // LightCones::packet() for the packet's ball).
-    // self_within: the lanes whose points Enclosures::points_within() ellipsoid self.
     template <int N>
     std::uint64_t shadow_lanes(const HitPacket<Real, N>& p, LightLanes<Real, N>& l, std::uint32_t self,
                                std::size_t li, std::uint64_t may_block, std::uint64_t self_within,
-                               TraceScratch<Real>& scratch) const {
-        using Bits = std::uint64_t;  // bit k for lane k
-        // Selects of these constants rather than shifts by k: GCC then vectorises the
-        // loops below (see HitPacket::bits()).
-        constexpr const Bits(&kLane)[N] = kLaneBits<N>.bit;
-        // Which lanes have the light in front. Lanes from p.count on repeat the last ray:
-        // they are never waiting.
-        const Bits front = l.front & ((Bits(1) << p.count) - 1);
-        // The own ellipsoid cannot block the lanes where it encloses the light and the
-        // point (contains_segments(), computed once), nor those where self_clear holds
-        // (computed only where that matters).
-        Bits self_free = enclosures_.light_within(li, self) ? self_within : 0;
-        if (((may_block >> self) & 1U) && (front & ~self_free) != 0) self_free |= p.self_clear(l, kSelfSlack);
-        if ((front & ~self_free) == 0) may_block &= ~(Bits(1) << self);
-        Bits candidates = may_block;
-        if (candidates == 0) {  // no ellipsoid can block any lane
-            l.lit = front;
-            return front;
-        }
-        // Per lane, point - light = -(L - P) exactly.
-        Real fx[N], fy[N], fz[N];
-        for (int k = 0; k < N; ++k) fx[k] = -l.tx[k], fy[k] = -l.ty[k], fz[k] = -l.tz[k];
-        // Per candidate j, the lanes whose segment may meet it (all first: independent
-        // vector tests, which overlap).
-        Bits meets[LightCones<C>::kMaxSpheres];
-        Bits reached = 0;
-        for (Bits rest = candidates; rest != 0; rest &= rest - 1) {
-            const int j = lowest_bit(rest);
-            reached |= meets[j] =
-                light_cones_.template lanes<N>(li, std::size_t(j), fx, fy, fz, l.distance, kLane);
-        }
-        Bits waiting = front;  // lanes not yet known to be shadowed
-        if ((reached & front) == 0) {
-            l.lit = front;
-            return front;
-        }
-        // Ellipsoid j against the waiting lanes whose segment may meet it; clears their
-        // bits when blocked.
-        auto try_ellipsoid = [&](std::uint32_t j) {
-            Bits lanes = waiting & meets[j];
-            if (j == self)
-                lanes &= ~self_free;
-            else if (lanes != 0)
-                lanes &= ~enclosures_.template contains_segments<N>(p.px, p.py, p.pz, li, j, kLane);
-            if (lanes == 0) return;
-            const auto answer = prefilter_.template decide_lanes<N>(p.px, p.py, p.pz, l.tx, l.ty, l.tz, j);
-            Bits blocked = 0, unsure = 0;
-            RT_VECTOR_LOOP
-            for (int k = 0; k < N; ++k) {
-                blocked |= answer.blocked[k] != 0 ? kLane[k] : 0;
-                unsure |= answer.unsure[k] != 0 ? kLane[k] : 0;
-            }
-            blocked &= lanes, unsure &= lanes;
-            for (; unsure != 0; unsure &= unsure - 1) {  // rare: intersect() decides
-                const int k = lowest_bit(unsure);
-                if (blocks(ellipsoids_[j], V{p.px[k], p.py[k], p.pz[k]}, V{l.tx[k], l.ty[k], l.tz[k]}))
-                    blocked |= kLane[k];
-            }
-            if (blocked == 0) return;
-            waiting &= ~blocked;
-            scratch.last_occluder[li] = j;
-        };
-        // The last blocker of this light first (neighbouring pixels share their shadows),
-        // then the others in increasing order.
-        const std::uint32_t last = scratch.last_occluder[li];
-        if (last != TraceScratch<Real>::kNone && ((candidates >> last) & 1U)) {
-            try_ellipsoid(last);
-            candidates &= ~(Bits(1) << last);
-        }
-        for (; candidates != 0 && waiting != 0; candidates &= candidates - 1)
-            try_ellipsoid(static_cast<std::uint32_t>(lowest_bit(candidates)));
-        // Lit: the light in front and no blocker found.
-        l.lit = waiting;
-        return waiting;
-    }
+                               TraceScratch<Real>& scratch) const;
 
-    // The mirrored rays of a packet (Whitted::shade()); adds seen * kr to each lane's colour.
     template <int N>
-    void reflections(HitPacket<Real, N>& p, Real kr, int reflections_left,
-                     TraceScratch<Real>& scratch) const {
-        Real mx[N], my[N], mz[N];
-        p.mirror(mx, my, mz);
-        std::uint32_t next[N];
-        Real next_t[N];
-        bool next_inside[N];
-        // What each mirrored ray hits (lanes from p.count on repeat the last ray). A
-        // reflected ray that hits nothing returns black, unlike an eye ray.
-        nearest_hits<N>(p.px, p.py, p.pz, mx, my, mz, Real(kReflectedRayMinT), scratch, next, next_t,
-                        next_inside);
-        V seen[N] = {};
-        using Bits = std::uint64_t;
-        constexpr const Bits(&kLane)[N] = kLaneBits<N>.bit;
-        const Bits counted = (Bits(1) << p.count) - 1;  // p.count <= N <= 32
-        Bits waiting = 0;  // the lanes whose mirrored rays hit something not yet shaded
-        RT_VECTOR_LOOP
-        for (int k = 0; k < N; ++k) waiting |= next[k] != TraceScratch<Real>::kNone ? kLane[k] : 0;
-        waiting &= counted;
-        while (waiting != 0) {
-            const int k = lowest_bit(waiting);
-            // The lanes whose mirrored rays hit the same ellipsoid, as one packet.
-            const std::uint32_t target = next[k];
-            Bits same = 0;
-            RT_VECTOR_LOOP
-            for (int j = 0; j < N; ++j) same |= next[j] == target ? kLane[j] : 0;
-            same &= waiting;
-            waiting &= ~same;
-            if (same == counted) {  // all of them (the usual case): the packet's own arrays
-                hit_colours<N>(target, p.count, p.px, p.py, p.pz, mx, my, mz, next_t, next_inside,
-                               reflections_left - 1, scratch, seen);
-                break;
-            }
-            int lane[N], n = 0;
-            Real gox[N], goy[N], goz[N], gdx[N], gdy[N], gdz[N], gt[N];
-            bool gin[N];
-            for (Bits rest = same; rest != 0; rest &= rest - 1) {
-                const int j = lowest_bit(rest);
-                lane[n] = j;
-                gox[n] = p.px[j], goy[n] = p.py[j], goz[n] = p.pz[j];
-                gdx[n] = mx[j], gdy[n] = my[j], gdz[n] = mz[j], gt[n] = next_t[j], gin[n] = next_inside[j];
-                ++n;
-            }
-            V group[N];
-            by_width(n, [&](auto width) {
-                hit_colours<decltype(width)::value>(target, n, gox, goy, goz, gdx, gdy, gdz, gt, gin,
-                                                    reflections_left - 1, scratch, group);
-            });
-            for (int j = 0; j < n; ++j) seen[lane[j]] = group[j];
-        }
-        for (int k = 0; k < p.count; ++k) p.add(k, seen[k] * kr);
-    }
+    void reflections(HitPacket<Real, N>& p, Real kr, int reflections_left, TraceScratch<Real>& scratch) const;
 
     std::vector<Ellipsoid<Real>> ellipsoids_;
     std::vector<PointLight<Real>> lights_;
@@ -708,3 +393,5 @@ private:
 };
 
 }  // namespace rt
+
+#include "raytracer/flat_sweep/packet_shading.h"  // the packets: Tracer's members defined there
