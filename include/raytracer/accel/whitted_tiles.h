@@ -108,7 +108,7 @@ private:
             set_lane(ambient, k, material.ambient);
             t[k] = hit.t;
             inside |= hit.inside ? LaneBits(1) << k : 0;
-            set_lane(b.finish, k, material.finish);
+            set_lane(b.finish, k, finish_of(e));
             b.kr[k] = e.kr;
             hits |= 1U << k;
             lit |= material.no_lighting ? 0U : 1U << k;

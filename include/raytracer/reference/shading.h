@@ -12,7 +12,9 @@
 
 #include "raytracer/compiler.h"
 #include "raytracer/lanes.h"
+#include "raytracer/reference/ellipsoid.h"
 #include "raytracer/reference/power.h"
+#include "raytracer/reference/spec_rules.h"
 #include "raytracer/vec3.h"
 
 namespace rt {
@@ -26,12 +28,13 @@ struct Finish {
     MaskOf<T> specular;     // not specular_is_zero(): a specular term may show
 };
 
-// A material in every lane, and in lane k of a tile's.
-template <int N, typename Real>
-Finish<Lanes<Real, N>> in_every_lane(const Finish<Real>& f) {
-    return {Vec3<Lanes<Real, N>>::from(f.colour), f.kd, f.ks, f.shininess, f.exponent,
-            f.specular ? ~LaneBits(0) : 0};
+// Ellipsoid e's Finish (its exponent and specular mask computed here: a few operations).
+template <typename Real>
+Finish<Real> finish_of(const Ellipsoid<Real>& e) {
+    return {e.colour, e.kd, e.ks, e.shininess, whole_exponent(e.shininess), !specular_is_zero(e)};
 }
+
+// Lane k of a tile's Finish.
 template <int N, typename Real>
 void set_lane(Finish<Lanes<Real, N>>& lanes, int k, const Finish<Real>& f) {
     set_lane(lanes.colour, k, f.colour);

@@ -35,15 +35,14 @@ public:
           near_z_(-Real(scene.near_plane)),
           columns_(Real(scene.columns)),
           rows_(Real(scene.rows)) {
+        lights_.reserve(scene.lights.size());
         for (const LightSpec& l : scene.lights)
             lights_.push_back({V::from(l.position), V::from(l.intensity)});
+        materials_.reserve(scene.spheres.size());
         for (std::uint32_t i = 0; i < scene.spheres.size(); ++i) {
             const Ellipsoid<Real>& e = geometry_.ellipsoid(i);
-            const bool no_specular = specular_is_zero(e);  // with Kd = 0 too, no light adds anything
-            materials_.push_back(
-                {(ambient_ * e.ka) * e.colour,
-                 no_specular && e.kd == 0,
-                 {e.colour, e.kd, e.ks, e.shininess, whole_exponent(e.shininess), !no_specular}});
+            // With Ks = 0 (specular_is_zero()) and Kd = 0, no light adds anything.
+            materials_.push_back({(ambient_ * e.ka) * e.colour, specular_is_zero(e) && e.kd == 0});
         }
     }
 
@@ -85,10 +84,11 @@ public:
         const SurfacePoint<Real> s =
             surface_point(origin, direction, hit.t, hit.inside, e.centre, e.scale_squared);
         V colour = m.ambient;
+        const Finish<Real> finish = finish_of(e);
         for (std::size_t li = 0; li < lights_.size() && !m.no_lighting; ++li) {
             const LightRay<Real> r = light_ray(s, lights_[li].position);
             if (r.faces && !geometry_.occluded(s.point, r.to_light, scratch.blockers[li]))
-                add_light(colour, s, r, lights_[li].intensity, m.finish, true);
+                add_light(colour, s, r, lights_[li].intensity, finish, true);
         }
         if (e.kr > 0 && reflections_left > 0)
             colour += trace(s.point, mirrored(s.normal, direction), kReflectedRayMinT, reflections_left - 1,
@@ -97,12 +97,11 @@ public:
         return colour;
     }
 
-    // An ellipsoid's material: its ambient term and its Finish, for a driver that shades
-    // many hits at once (whitted_tiles.h).
+    // What shading needs of an ellipsoid beyond it and its Finish (finish_of()), also
+    // for a driver that shades many hits at once (whitted_tiles.h).
     struct Material {
         V ambient;         // Ka * Ia * O
         bool no_lighting;  // Kd = Ks = 0: no light adds anything
-        Finish<Real> finish;
     };
     const Material& material(std::uint32_t i) const { return materials_[i]; }
     std::size_t light_count() const { return lights_.size(); }
