@@ -107,6 +107,10 @@ struct Lanes {
         using std::sqrt;
         return map(a, a, [](Real x, Real) { return sqrt(x); });
     }
+    RT_ALWAYS_INLINE friend Lanes abs(const Lanes& a) {
+        using std::abs;
+        return map(a, a, [](Real x, Real) { return abs(x); });
+    }
     // std::pow in each lane of where (the others are 0): pow() has no vector form.
     RT_ALWAYS_INLINE friend Lanes pow_where(LaneBits where, const Lanes& x, const Lanes& n) {
         using std::pow;

@@ -45,6 +45,7 @@ public:
         const Ellipsoid<Real>* ellipsoid[N];
         V point[N];  // the hit points, for the shadow bundles and the next bounce
         SurfacePoint<L> surface;
+        L scaled_length, abs_c;  // |(P - C) / s^2| and |o'.o' - 1|, for leaves_own_ellipsoid()
         Finish<L> finish;
         L kr;
         Vec3<L> colour;
@@ -93,7 +94,7 @@ private:
         const Vec3<L> miss = Vec3<L>::from(depth == 0 ? tracer_.background() : V{});
         const bool may_reflect = depth < kMaxReflections;
         unsigned hits = 0, lit = 0, reflecting = 0;
-        Vec3<L> origin, direction, centre, scale_squared, ambient;
+        Vec3<L> origin, direction, centre, scale, scale_squared, ambient;
         L t(Real(0));
         LaneBits inside = 0;
         for (unsigned m = lanes; m != 0; m &= m - 1) {  // gather each hit's terms into its lane
@@ -104,7 +105,8 @@ private:
             const typename Tracer::Material& material = tracer_.material(hit.ellipsoid);
             b.ellipsoid[k] = &e;
             set_lane(origin, k, b.origin[k]), set_lane(direction, k, b.direction[k]);
-            set_lane(centre, k, e.centre), set_lane(scale_squared, k, e.scale_squared);
+            set_lane(centre, k, e.centre), set_lane(scale, k, e.scale),
+                set_lane(scale_squared, k, e.scale_squared);
             set_lane(ambient, k, material.ambient);
             t[k] = hit.t;
             inside |= hit.inside ? LaneBits(1) << k : 0;
@@ -117,17 +119,26 @@ private:
         b.colour = select(LaneBits(hits), ambient, miss);
         if (hits == 0) return hits;
         b.surface = surface_point(origin, direction, t, inside, centre, scale_squared);
+        // The terms of leaves_own_ellipsoid(): |c| as mapped_origin() computes c.
+        const Vec3<L> to_centre = b.surface.point - centre;
+        b.scaled_length = length(to_centre / scale_squared);
+        const Vec3<L> mapped = to_centre / scale;
+        b.abs_c = abs(dot(mapped, mapped) - L(1));
         for (unsigned m = hits; m != 0; m &= m - 1)
             b.point[lowest_bit(m)] = lane(b.surface.point, lowest_bit(m));
         for (std::size_t li = 0; li < tracer_.light_count() && lit != 0; ++li) {
             const LightRay<L> r = light_ray(b.surface, Vec3<L>::from(tracer_.light_position(li)));
             const unsigned facing = lit & static_cast<unsigned>(r.faces);  // with a light ray to try
+            // The lanes whose own ellipsoid cannot block their shadow ray (seen from outside).
+            const auto own_clear = static_cast<unsigned>(
+                ~inside & leaves_own_ellipsoid<Real>(b.scaled_length, r.distance, r.n_dot_l, b.abs_c));
             unsigned blocked = 0;
             for (unsigned left = facing; left != 0;) {
-                const unsigned bundle = close_lanes(b, left);
+                const unsigned bundle = close_lanes(b, left);  // on one ellipsoid, or one lane
                 left &= ~bundle;
-                blocked |= tracer_.geometry().occluded(b.point, tracer_.light_position(li), bundle,
-                                                       scratch.tracer.blockers[li]);
+                blocked |= tracer_.geometry().occluded(
+                    b.point, tracer_.light_position(li), bundle, scratch.tracer.blockers[li],
+                    b.hit[lowest_bit(bundle)].ellipsoid, own_clear & bundle);
             }
             add_light(b.colour, b.surface, r, Vec3<L>::from(tracer_.light_intensity(li)), b.finish,
                       LaneBits(facing & ~blocked));

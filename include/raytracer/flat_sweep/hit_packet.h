@@ -29,6 +29,7 @@
 
 #include "raytracer/compiler.h"
 #include "raytracer/lanes.h"
+#include "raytracer/reference/spec_rules.h"
 #include "raytracer/vec3.h"
 
 namespace rt {
@@ -178,20 +179,15 @@ struct HitPacket {
         return l.front != 0;
     }
 
-    // The lanes where the own ellipsoid cannot block the shadow ray to light l. A point
-    // of an ellipsoid seen from outside, with the light in front (N.L > 0), leaves it at
-    // once, and the ellipsoid is convex: intersect() finds a root below 0 and one within
-    // |c| / b of 0, where c = o'.o' - 1 (0 but for rounding) and b = o'.d' >=
-    // |(P - C)/s^2| |L - P| (N.L - self_slack) (Cauchy-Schwarz on the rounding of each
-    // factor). Where that bound exceeds 2000 |c|, neither root is in (0.001, 1). Only
-    // asked where the own ellipsoid is a candidate.
-    std::uint64_t self_clear(const Lanes& l, Real self_slack) const {
+    // The lanes where the own ellipsoid cannot block the shadow ray to light l
+    // (leaves_own_ellipsoid(), spec_rules.h). Only asked where the own ellipsoid is a
+    // candidate.
+    std::uint64_t self_clear(const Lanes& l) const {
         std::uint64_t set = 0;
         RT_VECTOR_LOOP
         for (int k = 0; k < N; ++k) {
-            const Real clear =
-                self_test[k] *
-                mask(scaled_length[k] * l.distance[k] * (l.n_dot_l[k] - self_slack) > Real(2000) * self_c[k]);
+            const Real clear = self_test[k] * mask(leaves_own_ellipsoid<Real>(scaled_length[k], l.distance[k],
+                                                                              l.n_dot_l[k], self_c[k]));
             set |= clear != 0 ? kLaneBit[k] : 0;
         }
         return set;

@@ -167,7 +167,7 @@ void Tracer<Real>::hit_colours(std::uint32_t i, int count, const Real* ox, const
                         light_grids_[li].template cells<N>(fx, fy, fz, cells);
                     }
                 }
-                const std::uint64_t self_clear = p.self_clear(l, kSelfSlack);
+                const std::uint64_t self_clear = p.self_clear(l);
                 for (int k = 0; k < count; ++k) {
                     if ((l.front & kLaneBits<N>.bit[k]) == 0) continue;
                     const V point{p.px[k], p.py[k], p.pz[k]}, to_light{l.tx[k], l.ty[k], l.tz[k]};
@@ -226,7 +226,7 @@ std::uint64_t Tracer<Real>::shadow_lanes(const HitPacket<Real, N>& p, LightLanes
     // point (contains_segments(), computed once), nor those where self_clear holds
     // (computed only where that matters).
     Bits self_free = enclosures_.light_within(li, self) ? self_within : 0;
-    if (((may_block >> self) & 1U) && (front & ~self_free) != 0) self_free |= p.self_clear(l, kSelfSlack);
+    if (((may_block >> self) & 1U) && (front & ~self_free) != 0) self_free |= p.self_clear(l);
     if ((front & ~self_free) == 0) may_block &= ~(Bits(1) << self);
     Bits candidates = may_block;
     if (candidates == 0) {  // no ellipsoid can block any lane

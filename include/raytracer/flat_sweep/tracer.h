@@ -273,9 +273,6 @@ public:
 private:
     // Cells per cube-face side of the light buffers (direction_grid.h).
     static constexpr int kGridCells = 16;
-    // The rounding allowance on N.L of the self-shadow test (HitPacket::self_clear()).
-    static constexpr Real kSelfSlack = Real(32) * std::numeric_limits<Real>::epsilon();
-
     // Whether rounding is far below the spheres' inflation (sphere_bounds.h) for the box
     // of everything a ray can start from or go to: the ellipsoids' spheres, the lights
     // and the camera. Light buffers and packet shadows are exact only then.
