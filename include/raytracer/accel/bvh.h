@@ -373,23 +373,9 @@ void Bvh<Real, Width>::traverse(const SlabRay<C>& ray, C t1, Leaf leaf) const {
 
 template <typename Real, int Width>
 Bvh<Real, Width>::Bvh(std::vector<Ellipsoid<Real>> ellipsoids, unsigned threads) {
-    // Rounding of intersect() in the unit space grows like epsilon(Real) times the
-    // distance in units of the smallest scale: as sphere_bounds.h, at most 1e6 smallest
-    // scales in double (1e2 in float). The Euclidean distance is at most sqrt(3) times
-    // the max-norm one that meets() measures: the guard is half the reach.
-    const C reach = std::numeric_limits<Real>::digits > 30 ? C(1e6) : C(1e2);
     std::vector<BuildItem<C>> items(ellipsoids.size());
-    for (std::size_t i = 0; i < ellipsoids.size(); ++i) {
-        using std::abs;
-        const Ellipsoid<Real>& e = ellipsoids[i];
-        const C s[3] = {abs(C(e.scale.x)), abs(C(e.scale.y)), abs(C(e.scale.z))};
-        BuildItem<C>& item = items[i];
-        item.box = inflated_box<C>(e);
-        item.centre[0] = C(e.centre.x), item.centre[1] = C(e.centre.y), item.centre[2] = C(e.centre.z);
-        const C guard = std::min({s[0], s[1], s[2]}) * reach / 2;
-        item.guard = guard <= std::numeric_limits<C>::max() ? guard : std::numeric_limits<C>::max();
-        item.index = static_cast<std::uint32_t>(i);
-    }
+    for (std::size_t i = 0; i < ellipsoids.size(); ++i)
+        items[i] = build_item<C>(ellipsoids[i], static_cast<std::uint32_t>(i));
     const std::vector<BuildNode<C>> binary = BinaryTreeBuilder<C>().build(items, threads);
     index_.reserve(items.size());
     position_.resize(items.size());

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "raytracer/accel/bvh_build.h"
@@ -102,6 +103,25 @@ BuildBox<C> inflated_box(const Ellipsoid<Real>& e) {
         box.lo[a] = c[a] - half, box.hi[a] = c[a] + half;
     }
     return box;
+}
+
+// Ellipsoid e as the tree's build takes it (bvh_build.h): its inflated box, its centre
+// and its guard distance. Rounding of intersect() in the unit space grows like
+// epsilon(Real) times the distance in units of the smallest scale: as sphere_bounds.h,
+// at most 1e6 smallest scales in double (1e2 in float). The Euclidean distance is at
+// most sqrt(3) times the max-norm one that the slab test measures: the guard is half
+// the reach.
+template <typename C, typename Real>
+BuildItem<C> build_item(const Ellipsoid<Real>& e, std::uint32_t index) {
+    using std::abs;
+    const C reach = std::numeric_limits<Real>::digits > 30 ? C(1e6) : C(1e2);
+    const C guard = std::min({abs(C(e.scale.x)), abs(C(e.scale.y)), abs(C(e.scale.z))}) * reach / 2;
+    BuildItem<C> item;
+    item.box = inflated_box<C>(e);
+    item.centre[0] = C(e.centre.x), item.centre[1] = C(e.centre.y), item.centre[2] = C(e.centre.z);
+    item.guard = guard <= std::numeric_limits<C>::max() ? guard : std::numeric_limits<C>::max();
+    item.index = index;
+    return item;
 }
 
 // The rays of a bundle's lanes, by axis and lane, each to be met within [0, t1[k].
