@@ -42,10 +42,8 @@ public:
     struct Bounce {
         V origin[N], direction[N];  // as the geometry's bundle queries take them
         NearestHit<Real> hit[N];
-        const Ellipsoid<Real>* ellipsoid[N];
         V point[N];  // the hit points, for the shadow bundles and the next bounce
         SurfacePoint<L> surface;
-        L scaled_length, abs_c;  // |(P - C) / s^2| and |o'.o' - 1|, for leaves_own_ellipsoid()
         Finish<L> finish;
         L kr;
         Vec3<L> colour;
@@ -103,7 +101,6 @@ private:
             if (!hit.found()) continue;
             const Ellipsoid<Real>& e = tracer_.geometry().ellipsoid(hit.ellipsoid);
             const typename Tracer::Material& material = tracer_.material(hit.ellipsoid);
-            b.ellipsoid[k] = &e;
             set_lane(origin, k, b.origin[k]), set_lane(direction, k, b.direction[k]);
             set_lane(centre, k, e.centre), set_lane(scale, k, e.scale),
                 set_lane(scale_squared, k, e.scale_squared);
@@ -119,11 +116,9 @@ private:
         b.colour = select(LaneBits(hits), ambient, miss);
         if (hits == 0) return hits;
         b.surface = surface_point(origin, direction, t, inside, centre, scale_squared);
-        // The terms of leaves_own_ellipsoid(): |c| as mapped_origin() computes c.
-        const Vec3<L> to_centre = b.surface.point - centre;
-        b.scaled_length = length(to_centre / scale_squared);
-        const Vec3<L> mapped = to_centre / scale;
-        b.abs_c = abs(dot(mapped, mapped) - L(1));
+        // |c| of leaves_own_ellipsoid(), as mapped_origin() computes c.
+        const Vec3<L> mapped = (b.surface.point - centre) / scale;
+        const L abs_c = abs(dot(mapped, mapped) - L(1));
         for (unsigned m = hits; m != 0; m &= m - 1)
             b.point[lowest_bit(m)] = lane(b.surface.point, lowest_bit(m));
         for (std::size_t li = 0; li < tracer_.light_count() && lit != 0; ++li) {
@@ -131,7 +126,7 @@ private:
             const unsigned facing = lit & static_cast<unsigned>(r.faces);  // with a light ray to try
             // The lanes whose own ellipsoid cannot block their shadow ray (seen from outside).
             const auto own_clear = static_cast<unsigned>(
-                ~inside & leaves_own_ellipsoid<Real>(b.scaled_length, r.distance, r.n_dot_l, b.abs_c));
+                ~inside & leaves_own_ellipsoid<Real>(b.surface.scaled_length, r.distance, r.n_dot_l, abs_c));
             unsigned blocked = 0;
             for (unsigned left = facing; left != 0;) {
                 const unsigned bundle = close_lanes(b, left);  // on one ellipsoid, or one lane
@@ -162,12 +157,13 @@ private:
     // would sweep the scene). Measured (callgrind, sphereflakes 4 and 5): bundles of 2
     // or 3 rays cost more than the rays alone.
     static constexpr int kBundleLanes = 4;
-    static unsigned close_lanes(const Bounce& b, unsigned lanes) {
+    unsigned close_lanes(const Bounce& b, unsigned lanes) const {
         const int first = lowest_bit(lanes);
-        const Ellipsoid<Real>& e = *b.ellipsoid[first];
+        const std::uint32_t on = b.hit[first].ellipsoid;
+        const Ellipsoid<Real>& e = tracer_.geometry().ellipsoid(on);
         unsigned bundle = 0;
         for (unsigned m = lanes; m != 0; m &= m - 1)
-            bundle |= b.ellipsoid[lowest_bit(m)] == &e ? 1U << lowest_bit(m) : 0U;
+            bundle |= b.hit[lowest_bit(m)].ellipsoid == on ? 1U << lowest_bit(m) : 0U;
         using C = AtLeastDouble<Real>;
         C lo[3], hi[3];
         bounds_of(b.point, bundle, lo, hi);

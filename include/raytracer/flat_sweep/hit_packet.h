@@ -12,10 +12,12 @@
 // bits. Where the reference skips a term (light behind, in shadow, R.V <= 0), the lane
 // keeps its sum by a select; no zero is added.
 //
+// Shadow rays are Tracer::shadow_lanes()'s (or one at a time, Tracer::hit_colours()),
+// and what each mirrored ray hits is Tracer::nearest_hits()'s (packet_shading.h).
+//
 // shading.h over Lanes (lanes.h), as the tree's tiles run it, measured 20-30% slower
 // here on the heavy scene (one thread): each Lanes operation is a loop of its own,
-// stored and loaded, where these loops keep a chain in registers. Shadow rays are Tracer::shadow_lanes()'s
-// (or scalar, Tracer::hit_colours()), and what each mirrored ray hits is Tracer::nearest_hits()'s.
+// stored and loaded, where these loops keep a chain in registers.
 //
 // The loops with selects or a variable trip count around them (the sums, the whole
 // power, R.V) are marked RT_VECTOR_LOOP: GCC unrolled them completely first and then
@@ -127,8 +129,7 @@ struct HitPacket {
     }
 
     // self_clear()'s terms: o = to_centre / scale; self_c = |o.o - 1| (as intersect()
-    // computes it); the test holds outside and
-    // where self_c is a number.
+    // computes it); the test holds outside and where self_c is a number.
     void self_terms(const Vec3<Real>& scale) {
         using std::abs;
         for (int k = 0; k < N; ++k) {

@@ -38,6 +38,11 @@ std::int32_t whole_exponent(Real n) {
 // where its own bit is set, so it is the scalar's product, bit for bit.
 template <typename T, typename K>
 RT_ALWAYS_INLINE T whole_power(T x, K k) {
+    if constexpr (!std::is_arithmetic_v<K>) {
+        // One exponent in every lane (lanes on one ellipsoid): one loop for all,
+        // without a choice per lane.
+        if ((k != K(k[0])) == 0) return whole_power(x, k[0]);
+    }
     T result = T(1);
     for (; any(k != K(0)); k = k >> 1) {
         result = select((k & K(1)) != K(0), result * x, result);
@@ -49,11 +54,6 @@ RT_ALWAYS_INLINE T whole_power(T x, K k) {
 // x^n, with k = whole_exponent(n) computed once per material.
 template <typename T, typename K>
 RT_ALWAYS_INLINE T specular_power(T x, T n, K k) {
-    if constexpr (!std::is_arithmetic_v<K>) {
-        // One whole exponent in every lane (a packet on one ellipsoid): one loop for
-        // all, without a choice per lane.
-        if ((k != K(k[0])) == 0 && k[0] >= 0) return whole_power(x, k[0]);
-    }
     const MaskOf<T> whole = k >= K(0), fractional = k < K(0);
     const T power = whole_power(x, select(whole, k, K(0)));
     return any(fractional) ? select(whole, power, pow_where(fractional, x, n)) : power;

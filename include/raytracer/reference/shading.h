@@ -46,6 +46,7 @@ void set_lane(Finish<Lanes<Real, N>>& lanes, int k, const Finish<Real>& f) {
 template <typename T>
 struct SurfacePoint {
     Vec3<T> point, normal, to_viewer;
+    T scaled_length;  // |(P - C) / s^2|, the normal's length before normalising
 };
 
 // The hit at origin + t direction on the ellipsoid of centre and scale^2; inside: the
@@ -56,8 +57,10 @@ RT_ALWAYS_INLINE SurfacePoint<T> surface_point(const Vec3<T>& origin, const Vec3
                                                const Vec3<T>& scale_squared) {
     SurfacePoint<T> s;
     s.point = origin + direction * t;
-    const Vec3<T> outward = normalize((s.point - centre) / scale_squared);
-    s.normal = select(inside, -outward, outward);  // seen from inside: face the viewer
+    const Vec3<T> scaled = (s.point - centre) / scale_squared;
+    s.scaled_length = length(scaled);
+    const Vec3<T> outward = scaled * (T(1) / s.scaled_length);  // normalize()
+    s.normal = select(inside, -outward, outward);               // seen from inside: face the viewer
     s.to_viewer = normalize(-direction);
     return s;
 }
