@@ -7,6 +7,7 @@
 //   takes_the_tree()) renders large scenes and every scene file as the reference
 //   (render(..., accelerate = false): whitted.h with brute_force.h), in float, double
 //   and long double and for any number of threads.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -215,6 +216,42 @@ TEST(bvh_built_on_two_threads_is_the_same_tree) {
         differing += one.occluded(origin, direction, hint_one) != two.occluded(origin, direction, hint_two);
     }
     CHECK_EQ(differing, 0);
+}
+
+// The items below a wide tree's child, each leaf's marked in seen; -1 where a wide node
+// other than the root holds at most kSmallSubtree items (it should be a leaf).
+int items_below(const std::vector<rt::WideNode<double, 8>>& nodes, rt::WideChild child, bool root,
+                std::vector<int>& seen) {
+    if (child.count > 0) {
+        for (std::uint32_t i = child.first; i < child.first + child.count; ++i) ++seen[i];
+        return static_cast<int>(child.count);
+    }
+    int total = 0;
+    const rt::WideNode<double, 8>& node = nodes[child.first];
+    for (int k = 0; k < 8; ++k) {
+        if (!(node.used >> k & 1U)) continue;
+        const int below = items_below(nodes, node.child[k], false, seen);
+        if (below < 0) return -1;
+        total += below;
+    }
+    return !root && total <= static_cast<int>(rt::kSmallSubtree) ? -1 : total;
+}
+
+// The wide tree holds every item in exactly one leaf, and a subtree of a few items is a
+// leaf rather than a wide node of its own: far fewer nodes than the binary tree's.
+TEST(bvh_collapse_keeps_every_item_and_no_small_node) {
+    const rt::Scene scene = scale::random_ellipsoids(20000);
+    const std::vector<rt::Ellipsoid<double>> all = rt::make_ellipsoids<double>(scene);
+    std::vector<rt::BuildItem<double>> items(all.size());
+    for (std::size_t i = 0; i < all.size(); ++i)
+        items[i] = rt::build_item<double>(all[i], static_cast<std::uint32_t>(i));
+    const std::vector<rt::BuildNode<double>> binary = rt::BinaryTreeBuilder<double>().build(items);
+    std::vector<rt::WideNode<double, 8>> nodes;
+    const rt::WideChild root = rt::collapse<8>(binary, nodes);
+    std::vector<int> seen(all.size());
+    CHECK_EQ(items_below(nodes, root, true, seen), static_cast<int>(all.size()));
+    CHECK(std::all_of(seen.begin(), seen.end(), [](int n) { return n == 1; }));
+    CHECK(nodes.size() * 5 < all.size());
 }
 
 namespace {
