@@ -17,10 +17,12 @@
 namespace rt {
 
 namespace {
-// The threads a render uses: as asked (0: all cores), at most one per row.
+// The threads asked for (0: all cores).
+unsigned threads_asked(unsigned threads) { return threads == 0 ? default_thread_count() : threads; }
+
+// The threads a render uses: as asked, at most one per row.
 unsigned thread_count(const Scene& scene, unsigned threads) {
-    return std::min<unsigned>(threads == 0 ? default_thread_count() : threads,
-                              static_cast<unsigned>(scene.rows));
+    return std::min<unsigned>(threads_asked(threads), static_cast<unsigned>(scene.rows));
 }
 
 // Bands of a few rows from a shared counter, so that a thread that draws cheap rows
@@ -97,8 +99,9 @@ void render_pixels_to(const Scene& scene, Geometry geometry, RowSink& sink, unsi
 
 template <typename Real>
 void render_whitted_to(const Scene& scene, RowSink& sink, unsigned threads) {
-    const unsigned count = thread_count(scene, threads);
-    render_pixels_to<true, Real>(scene, Bvh<Real>(make_ellipsoids<Real>(scene), count), sink, count);
+    // The tree is built on the threads asked even for an image of a few rows.
+    Bvh<Real> tree(make_ellipsoids<Real>(scene), threads_asked(threads));
+    render_pixels_to<true, Real>(scene, std::move(tree), sink, thread_count(scene, threads));
 }
 
 template <typename Real>
