@@ -3,6 +3,8 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <random>
 #include <string>
 #include <utility>
@@ -228,12 +230,12 @@ namespace {
 
 // A text large enough to be cut into pieces (parser.h): kMinimal's lines, then spheres
 // and lights, as lines to edit; joined with `end` between lines.
-std::vector<std::string> many_lines() {
+std::vector<std::string> many_lines(std::size_t count = 30000) {
     std::vector<std::string> lines;
     for (std::size_t at = 0, next; (next = std::string(kMinimal).find('\n', at)) != std::string::npos;
          at = next + 1)
         lines.push_back(std::string(kMinimal).substr(at, next - at));
-    for (int i = 0; lines.size() < 30000; ++i) {
+    for (int i = 0; lines.size() < count; ++i) {
         lines.push_back("SPHERE s" + std::to_string(i) + " " + std::to_string(i % 17) +
                         ".25 -1.5e-3 -10 0.5 2 1.125 0.5 0 1 1 0.9 0.25 0.125 50");
         if (i % 1000 == 0) lines.push_back("LIGHT l" + std::to_string(i) + " 0 1e2 -3 0.9 0.5 0.25");
@@ -331,4 +333,60 @@ TEST(pieces_report_the_first_mistake_of_one_piece) {
             CHECK_EQ(got, one);
         }
     }
+}
+
+namespace {
+
+// Whether two scenes hold the same statements, field for field.
+bool same_scene(const rt::Scene& a, const rt::Scene& b) {
+    auto same_vec = [](const rt::Vec3<double>& x, const rt::Vec3<double>& y) {
+        return x.x == y.x && x.y == y.y && x.z == y.z;
+    };
+    bool same = a.spheres.size() == b.spheres.size() && a.lights.size() == b.lights.size() &&
+                a.output == b.output && a.output_line == b.output_line && a.columns == b.columns &&
+                a.rows == b.rows && a.near_plane == b.near_plane && same_vec(a.ambient, b.ambient) &&
+                same_vec(a.background, b.background);
+    for (std::size_t i = 0; same && i < a.spheres.size(); ++i) {
+        const rt::SphereSpec &x = a.spheres[i], &y = b.spheres[i];
+        same = x.name == y.name && x.line == y.line && same_vec(x.centre, y.centre) &&
+               same_vec(x.scale, y.scale) && same_vec(x.colour, y.colour) && x.ka == y.ka && x.kd == y.kd &&
+               x.ks == y.ks && x.kr == y.kr && x.shininess == y.shininess;
+    }
+    for (std::size_t i = 0; same && i < a.lights.size(); ++i) {
+        const rt::LightSpec &x = a.lights[i], &y = b.lights[i];
+        same = x.name == y.name && x.line == y.line && same_vec(x.position, y.position) &&
+               same_vec(x.intensity, y.intensity);
+    }
+    return same;
+}
+
+}  // namespace
+
+// A file large enough to be read in pieces (load_scene.cpp: 4 MiB, on a machine of two
+// cores or more) reads as its text, and a mistake on its last line is reported there.
+TEST(a_large_file_reads_as_its_text) {
+    namespace fs = std::filesystem;
+    std::random_device random;
+    const fs::path path =
+        fs::temp_directory_path() / ("raytracer-unit-parser-" + std::to_string(random()) + ".txt");
+    std::vector<std::string> lines = many_lines(60000);
+    std::string text = joined(lines);
+    CHECK(text.size() >= (std::size_t{4} << 20));
+    auto write = [&](const std::string& bytes) {
+        std::ofstream out(path, std::ios::binary);
+        out << bytes;
+    };
+    write(text);
+    CHECK(same_scene(rt::load_scene(path.string()), rt::parse_scene(text, path.string(), 1)));
+    lines.back() = "OUTPUT";
+    write(joined(lines));
+    std::string message;
+    try {
+        rt::load_scene(path.string());
+    } catch (const rt::SceneError& e) {
+        message = e.what();
+    }
+    CHECK(contains(message, ":" + std::to_string(lines.size()) + ": error: OUTPUT has 0 fields"));
+    std::error_code ignored;
+    fs::remove(path, ignored);
 }
