@@ -97,143 +97,184 @@ struct Workspace {
 std::chrono::microseconds worth_helping() {
     return std::chrono::microseconds(HelperPool::starts_on_idle_core() ? 100 : 3000);
 }
-}  // namespace
 
+// Each column's x on the near plane, computed once instead of per row (the same
+// operations, so the same bits).
 template <typename Real>
-void render_flat_sweep_to(const Scene& scene, RowSink& sink, unsigned threads) {
-    const Tracer<Real> tracer(scene);
-
+std::vector<Real> column_xs(const Scene& scene) {
     const Real left = static_cast<Real>(scene.left), right = static_cast<Real>(scene.right);
-    const Real bottom = static_cast<Real>(scene.bottom), top = static_cast<Real>(scene.top);
-    const Real near_z = -static_cast<Real>(scene.near_plane);
-    const Real columns = static_cast<Real>(scene.columns), rows = static_cast<Real>(scene.rows);
-
-    // Every pixel is a pure function of the scene and its (column, row): no state
-    // carries from one pixel to the next that could change a value (the last-occluder
-    // memory in the scratch only reorders tests whose answer is a yes/no "any").
-    // So the image is byte-identical whichever thread renders which rows.
-    // Which ellipsoids each pixel's eye ray may meet (screen_bounds.h): a pixel that
-    // none may meet is the background, without tracing.
-    const std::vector<PixelRect> rects = tracer.screen_rects(scene);
-    const auto spans = tracer.row_spans(scene);
-    const Vec3<Real> back = tracer.background();
-    const std::uint8_t background[3] = {to_byte(back.x), to_byte(back.y), to_byte(back.z)};
-
-    // Each row starts as a copy of a background row, written by the thread that renders
-    // the row, and only traced pixels are written over: most pixels of the course scenes
-    // see no ellipsoid, and a copy costs far less than a per-pixel test (measured in
-    // docs/speed.md).
-    const std::size_t row_bytes = static_cast<std::size_t>(scene.columns) * 3;
-    std::vector<std::uint8_t> background_row(row_bytes);
-    for (std::size_t i = 0; i < row_bytes; ++i) background_row[i] = background[i % 3];
-
-    // Rows go to the sink from a ring of rows as they are finished (row_ring.h), written
-    // by whichever thread completes a block of them while no block is being written.
-    // WHY: writing a 400x400 image took the calling thread 0.3-0.4 ms after the render
-    // (the kernel's copy into the page cache); a block written by one thread while the
-    // other renders costs the image half of that.
-    const unsigned most_threads = threads == 0 ? default_thread_count() : threads;
-    RowRing ring(sink, scene.rows, row_bytes, kTileRows, most_threads);
-
-    // Each column's x on the near plane, computed once instead of per row (the same
-    // operations, so the same bits).
-    std::vector<Real> column_x(static_cast<std::size_t>(scene.columns));
+    std::vector<Real> x(static_cast<std::size_t>(scene.columns));
     for (int c = 0; c < scene.columns; ++c)
-        column_x[static_cast<std::size_t>(c)] = left + (right - left) * static_cast<Real>(c) / columns;
+        x[static_cast<std::size_t>(c)] =
+            left + (right - left) * static_cast<Real>(c) / static_cast<Real>(scene.columns);
+    return x;
+}
 
-    // The camera's terms per ellipsoid, for intersecting eye rays many columns at a time.
+// The camera's terms per ellipsoid, for intersecting eye rays many columns at a time.
+template <typename Real>
+EyeRays<Real> make_eye_rays(const Tracer<Real>& tracer, const std::vector<PixelRect>& rects,
+                            const std::vector<Real>& column_x) {
     std::vector<Ellipsoid<Real>> ellipsoids;
     std::vector<MappedOrigin<Real>> eye_origins;
     std::vector<int> first_columns, last_columns;
-    for (std::size_t i = 0; i < scene.spheres.size(); ++i) {
+    for (std::size_t i = 0; i < rects.size(); ++i) {
         ellipsoids.push_back(tracer.ellipsoid(i));
         eye_origins.push_back(tracer.eye_origin(i));
         first_columns.push_back(rects[i].first_column);
         last_columns.push_back(rects[i].last_column);
     }
-    const EyeRays<Real> eye_rays(ellipsoids, eye_origins, Tracer<Real>::eye_min_t(), column_x, first_columns,
-                                 last_columns);
+    return EyeRays<Real>(ellipsoids, eye_origins, Tracer<Real>::eye_min_t(), column_x, first_columns,
+                         last_columns);
+}
 
-    // A band of at most kTileRows rows.
-    auto render_rows = [&](int first_row, int end_row, Workspace<Real>& work) {
-        TraceScratch<Real>& scratch = work.scratch;
-        std::vector<Span>& in_row = work.in_row;
-        int row_lo[kTileRows], row_hi[kTileRows];  // per row, the columns some ellipsoid may cover
-        Real row_y[kTileRows];
-        work.seen.clear();
-        int band_lo = scene.columns, band_hi = -1;
-        for (int r = first_row; r < end_row; ++r) {
-            std::uint8_t* const row_out = ring.row(r);
-            std::copy(background_row.begin(), background_row.end(), row_out);
-            in_row.clear();
-            int lo = scene.columns, hi = -1;  // the columns some ellipsoid may cover
-            const double row_y_double = scene.top - (scene.top - scene.bottom) * r / scene.rows;
-            for (std::uint32_t i = 0; i < rects.size(); ++i) {
-                Span span{i, rects[i].first_column, rects[i].last_column};
-                if (rects[i].first_row <= r && r <= rects[i].last_row &&
-                    spans.narrow(i, row_y_double, span.first, span.last)) {
-                    in_row.push_back(span);
-                    lo = std::min(lo, span.first);
-                    hi = std::max(hi, span.last);
-                }
-            }
-            // The top-left corner of the pixel, not its centre: the keys demand it.
-            const Real y = top - (top - bottom) * static_cast<Real>(r) / rows;
-            // All columns of each span at once (eye_rays.h).
-            EyeRowHits<Real>& hits = work.hits[static_cast<std::size_t>(r - first_row)];
-            EyeRays<Real>::clear(hits, lo, hi);
-            for (const Span& span : in_row) {
-                eye_rays.intersect(hits, span.ellipsoid, span.first, span.last, column_x.data(), y, near_z);
-                work.seen.push_back(span.ellipsoid);
-            }
-            row_lo[r - first_row] = lo, row_hi[r - first_row] = hi, row_y[r - first_row] = y;
-            band_lo = std::min(band_lo, lo), band_hi = std::max(band_hi, hi);
+// One image through the flat sweep: what every band of rows shares, made once, and the
+// rows handed out a band of kTileRows at a time from a shared counter, so that a thread
+// that draws cheap rows (background) takes more of them, and at the end the calling
+// thread waits for at most one band of a helper's.
+//
+// Every pixel is a pure function of the scene and its (column, row): no state carries
+// from one pixel to the next that could change a value (the last-occluder memory in the
+// scratch only reorders tests whose answer is a yes/no "any"). So the image is
+// byte-identical whichever thread renders which rows.
+template <typename Real>
+class FlatSweep {
+public:
+    FlatSweep(const Scene& scene, RowSink& sink, unsigned most_threads)
+        : scene_(scene),
+          tracer_(scene),
+          rects_(tracer_.screen_rects(scene)),
+          spans_(tracer_.row_spans(scene)),
+          background_row_(static_cast<std::size_t>(scene.columns) * 3),
+          ring_(sink, scene.rows, background_row_.size(), kTileRows, most_threads),
+          column_x_(column_xs<Real>(scene)),
+          eye_rays_(make_eye_rays(tracer_, rects_, column_x_)),
+          near_z_(-static_cast<Real>(scene.near_plane)) {
+        // Each row starts as a copy of a background row, written by the thread that
+        // renders the row, and only traced pixels are written over: most pixels of the
+        // course scenes see no ellipsoid, and a copy costs far less than a per-pixel test
+        // (measured in docs/speed.md).
+        const Vec3<Real> back = tracer_.background();
+        const std::uint8_t background[3] = {to_byte(back.x), to_byte(back.y), to_byte(back.z)};
+        for (std::size_t i = 0; i < background_row_.size(); ++i) background_row_[i] = background[i % 3];
+    }
+
+    Workspace<Real> workspace() const { return Workspace<Real>(tracer_, rects_.size(), scene_.columns); }
+
+    // Renders bands until none is left; after_row(r) after each, r its last row.
+    template <typename AfterRow>
+    void take_rows(Workspace<Real>& work, AfterRow after_row) {
+        for (int r = next_row_.fetch_add(kTileRows); r < scene_.rows; r = next_row_.fetch_add(kTileRows)) {
+            const int end = std::min(r + kTileRows, scene_.rows);
+            ring_.reserve(end);
+            Band band;
+            band.first_row = r, band.end_row = end, band.band_lo = scene_.columns;
+            work.seen.clear();
+            for (int row = r; row < end; ++row) eye_hits(row, band, work);
+            shade(band, work);
+            for (int f = r; f < end; ++f) ring_.finish(f);
+            after_row(end - 1);
         }
-        // The hit pixels, shaded in packets of pixels that see the same ellipsoid
-        // (Tracer::eye_hit_pixels(), vector lanes), gathered tile by tile.
-        for (int c0 = band_lo; c0 <= band_hi; c0 += kTileColumns)
-            for (int r = first_row; r < end_row; ++r) {
-                const int b = r - first_row;
+    }
+
+    // Every row is finished: the rest to the sink.
+    void flush() { ring_.flush(); }
+
+private:
+    // A band of at most kTileRows rows: per row, the columns some ellipsoid may cover and
+    // its y; and those columns over the band.
+    struct Band {
+        int first_row = 0, end_row = 0;
+        int lo[kTileRows] = {}, hi[kTileRows] = {};
+        Real y[kTileRows] = {};
+        int band_lo = 0, band_hi = -1;
+    };
+
+    // Row r as background, and the nearest hit of each of its eye rays that some
+    // ellipsoid may meet (screen_bounds.h: a pixel that none may meet is the background,
+    // without tracing), all columns of each ellipsoid's span at once (eye_rays.h).
+    void eye_hits(int r, Band& band, Workspace<Real>& work) {
+        std::vector<Span>& in_row = work.in_row;
+        std::copy(background_row_.begin(), background_row_.end(), ring_.row(r));
+        in_row.clear();
+        int lo = scene_.columns, hi = -1;  // the columns some ellipsoid may cover
+        const double row_y_double = scene_.top - (scene_.top - scene_.bottom) * r / scene_.rows;
+        for (std::uint32_t i = 0; i < rects_.size(); ++i) {
+            Span span{i, rects_[i].first_column, rects_[i].last_column};
+            if (rects_[i].first_row <= r && r <= rects_[i].last_row &&
+                spans_.narrow(i, row_y_double, span.first, span.last)) {
+                in_row.push_back(span);
+                lo = std::min(lo, span.first);
+                hi = std::max(hi, span.last);
+            }
+        }
+        // The top-left corner of the pixel, not its centre: the keys demand it.
+        const Real top = static_cast<Real>(scene_.top), bottom = static_cast<Real>(scene_.bottom);
+        const Real y = top - (top - bottom) * static_cast<Real>(r) / static_cast<Real>(scene_.rows);
+        const int b = r - band.first_row;
+        EyeRowHits<Real>& hits = work.hits[static_cast<std::size_t>(b)];
+        EyeRays<Real>::clear(hits, lo, hi);
+        for (const Span& span : in_row) {
+            eye_rays_.intersect(hits, span.ellipsoid, span.first, span.last, column_x_.data(), y, near_z_);
+            work.seen.push_back(span.ellipsoid);
+        }
+        band.lo[b] = lo, band.hi[b] = hi, band.y[b] = y;
+        band.band_lo = std::min(band.band_lo, lo), band.band_hi = std::max(band.band_hi, hi);
+    }
+
+    // The band's hit pixels, shaded in packets of pixels that see the same ellipsoid
+    // (Tracer::eye_hit_pixels(), vector lanes), gathered tile by tile.
+    void shade(const Band& band, Workspace<Real>& work) {
+        for (int c0 = band.band_lo; c0 <= band.band_hi; c0 += kTileColumns)
+            for (int r = band.first_row; r < band.end_row; ++r) {
+                const int b = r - band.first_row;
                 const EyeRowHits<Real>& hits = work.hits[static_cast<std::size_t>(b)];
-                std::uint8_t* const row_out = ring.row(r);
-                const int c_end = std::min(c0 + kTileColumns - 1, row_hi[b]);
-                for (int c = std::max(c0, row_lo[b]); c <= c_end; ++c) {
+                std::uint8_t* const row_out = ring_.row(r);
+                const int c_end = std::min(c0 + kTileColumns - 1, band.hi[b]);
+                for (int c = std::max(c0, band.lo[b]); c <= c_end; ++c) {
                     const auto column = static_cast<std::size_t>(c);
                     const std::uint32_t i = hits.ellipsoid[column];
                     if (i == EyeRowHits<Real>::kNone) continue;  // the background
                     Packet<Real>& packet = work.packets[i];
-                    packet.add(column_x[column], row_y[b], near_z, hits.t[column], hits.inside[column] != 0,
-                               row_out + column * 3);
-                    if (packet.count == kPacket) packet.shade(tracer, i, scratch);
+                    packet.add(column_x_[column], band.y[b], near_z_, hits.t[column],
+                               hits.inside[column] != 0, row_out + column * 3);
+                    if (packet.count == kPacket) packet.shade(tracer_, i, work.scratch);
                 }
             }
-        for (const std::uint32_t i : work.seen) work.packets[i].shade(tracer, i, scratch);
-    };
+        for (const std::uint32_t i : work.seen) work.packets[i].shade(tracer_, i, work.scratch);
+    }
 
-    // Rows are handed out a band of kTileRows at a time from a shared counter, so that a
-    // thread that draws cheap rows (background) takes more of them, and at the end the
-    // calling thread waits for at most one band of a helper's.
-    std::atomic<int> next_row{0};
-    // Renders bands until none is left; after_row(r) after each, r its last row.
-    auto take_rows = [&](Workspace<Real>& work, auto after_row) {
-        for (int r = next_row.fetch_add(kTileRows); r < scene.rows; r = next_row.fetch_add(kTileRows)) {
-            const int end = std::min(r + kTileRows, scene.rows);
-            ring.reserve(end);
-            render_rows(r, end, work);
-            for (int f = r; f < end; ++f) ring.finish(f);
-            after_row(end - 1);
-        }
-    };
+    const Scene& scene_;
+    const Tracer<Real> tracer_;
+    const std::vector<PixelRect> rects_;
+    const RowSpans<typename Tracer<Real>::C> spans_;  // per ellipsoid, the columns of a row
+    std::vector<std::uint8_t> background_row_;
+    // Rows go to the sink from a ring of rows as they are finished (row_ring.h), written
+    // by whichever thread completes a block of them while no block is being written.
+    // WHY: writing a 400x400 image took the calling thread 0.3-0.4 ms after the render
+    // (the kernel's copy into the page cache); a block written by one thread while the
+    // other renders costs the image half of that.
+    RowRing ring_;
+    const std::vector<Real> column_x_;
+    const EyeRays<Real> eye_rays_;
+    Real near_z_;
+    std::atomic<int> next_row_{0};
+};
+}  // namespace
+
+template <typename Real>
+void render_flat_sweep_to(const Scene& scene, RowSink& sink, unsigned threads) {
+    const unsigned most_threads = threads == 0 ? default_thread_count() : threads;
+    FlatSweep<Real> sweep(scene, sink, most_threads);
     // Each helper's working memory is made here, so that a helper thread allocates
     // nothing (its first allocation would set up a malloc arena of its own).
     std::vector<Workspace<Real>> helper_work;
-    auto help = [&](unsigned h) { take_rows(helper_work[h], [](int) {}); };
+    auto help = [&](unsigned h) { sweep.take_rows(helper_work[h], [](int) {}); };
     using Help = decltype(help);
     HelperPool::Job helpers;  // declared after all that help uses: closed first
     auto call_helpers = [&](unsigned count) {
         const unsigned wanted = std::min<unsigned>(count, static_cast<unsigned>(scene.rows)) - 1;
         helper_work.reserve(wanted);  // no reallocation: the helpers hold references
-        for (unsigned h = 0; h < wanted; ++h) helper_work.emplace_back(tracer, rects.size(), scene.columns);
+        for (unsigned h = 0; h < wanted; ++h) helper_work.push_back(sweep.workspace());
         helpers.start(
             wanted, [](void* context, unsigned h) { (*static_cast<Help*>(context))(h); }, &help);
     };
@@ -242,10 +283,10 @@ void render_flat_sweep_to(const Scene& scene, RowSink& sink, unsigned threads) {
     // than worth_helping(): scenes with few lit pixels are done sooner than a second
     // thread pays (measured in docs/speed.md).
     if (threads > 1) call_helpers(threads);
-    Workspace<Real> work(tracer, rects.size(), scene.columns);
+    Workspace<Real> work = sweep.workspace();
     const auto start = std::chrono::steady_clock::now();
     const auto worth = worth_helping();
-    take_rows(work, [&](int r) {
+    sweep.take_rows(work, [&](int r) {
         if (threads != 0) return;
         // Alone, this thread has done rows 0..r. Not judged on its first few microseconds
         // (cold caches): a scene done by then never asks.
@@ -257,7 +298,7 @@ void render_flat_sweep_to(const Scene& scene, RowSink& sink, unsigned threads) {
         }
     });
     helpers.finish();
-    ring.flush();  // every row is finished: the rest
+    sweep.flush();
 }
 
 // As render.cpp: double for raytracer.exe, float and long double for the tests.

@@ -83,27 +83,9 @@ public:
     DirectionGrid(C px, C py, C pz, const std::vector<BoundingSphere<C>>& spheres, int n,
                   const CellCones& cones)
         : x_(px), y_(py), z_(pz), n_(n), half_n_(C(n) / 2) {
-        using std::sqrt;
         const std::size_t face_cells = static_cast<std::size_t>(n) * static_cast<std::size_t>(n);
         const std::size_t cells = 6 * face_cells;
-        // Per sphere: its unit direction from X and the sine and cosine of its angular
-        // radius; a sphere around X is seen in every direction.
-        struct Seen {
-            C ux, uy, uz, sin_b, cos_b;
-            bool everywhere;
-        };
-        std::vector<Seen> seen(spheres.size());
-        for (std::size_t i = 0; i < spheres.size(); ++i) {
-            const BoundingSphere<C>& s = spheres[i];
-            const C wx = s.x - px, wy = s.y - py, wz = s.z - pz;
-            const C dist = sqrt(wx * wx + wy * wy + wz * wz);
-            Seen& v = seen[i];
-            v.everywhere = !(dist > s.radius * (C(1) + kAngleMargin));
-            if (v.everywhere) continue;
-            v.ux = wx / dist, v.uy = wy / dist, v.uz = wz / dist;
-            v.sin_b = s.radius / dist;
-            v.cos_b = sqrt(C(1) - v.sin_b * v.sin_b);
-        }
+        const std::vector<Seen> seen = seen_from(px, py, pz, spheres);
         // Each cell's list as a bit set (bit i: sphere i), sphere by sphere over all the
         // cells of a face: vector instructions, each cell's test the same operations.
         // Where there are more spheres than bits, cell by cell into the lists directly.
@@ -218,6 +200,29 @@ private:
     // Far above the rounding of a lookup (a few ulps of a direction) and of the cone
     // test; small against a cell (2/n of a face).
     static constexpr double kAngleMargin = 1e-6;
+
+    // A sphere as seen from X: its unit direction and the sine and cosine of its angular
+    // radius; a sphere around X is seen in every direction.
+    struct Seen {
+        C ux, uy, uz, sin_b, cos_b;
+        bool everywhere;
+    };
+    static std::vector<Seen> seen_from(C px, C py, C pz, const std::vector<BoundingSphere<C>>& spheres) {
+        using std::sqrt;
+        std::vector<Seen> seen(spheres.size());
+        for (std::size_t i = 0; i < spheres.size(); ++i) {
+            const BoundingSphere<C>& s = spheres[i];
+            const C wx = s.x - px, wy = s.y - py, wz = s.z - pz;
+            const C dist = sqrt(wx * wx + wy * wy + wz * wz);
+            Seen& v = seen[i];
+            v.everywhere = !(dist > s.radius * (C(1) + kAngleMargin));
+            if (v.everywhere) continue;
+            v.ux = wx / dist, v.uy = wy / dist, v.uz = wz / dist;
+            v.sin_b = s.radius / dist;
+            v.cos_b = sqrt(C(1) - v.sin_b * v.sin_b);
+        }
+        return seen;
+    }
 
     // Cell index along one face axis of k = (w + 1) n / 2 for a coordinate w in [-1, 1];
     // NaN gives 0.

@@ -69,6 +69,78 @@ void Tracer<Real>::nearest_hits(const Real* ox, const Real* oy, const Real* oz, 
     for (int k = 0; k < N; ++k) t[k] = best[k], inside[k] = far_root[k] != 0;
 }
 
+// Where a packet's points on ellipsoid i lie, for the shadow rays of every light (where
+// packet_shadows_): a ball around them, for LightCones::packet(); whether they all lie
+// in the ellipsoid's bounding sphere, so that pair_blockers_'s sets apply (hit points
+// lie on the ellipsoid: always, but checked, as the sets' argument needs it); and the
+// lanes whose points lie within the ellipsoid for Enclosures, once for all lights (the
+// mirror room's points are on it, so within it for every light it encloses).
+template <typename Real>
+struct Tracer<Real>::PacketPlace {
+    typename LightCones<C>::Ball ball;
+    bool in_sphere = false;
+    std::uint64_t self_within = 0;
+};
+
+template <typename Real>
+template <int N>
+typename Tracer<Real>::PacketPlace Tracer<Real>::packet_place(const HitPacket<Real, N>& p,
+                                                              std::uint32_t i) const {
+    PacketPlace place;
+    if constexpr (std::is_same_v<C, Real>) {
+        if (!packet_shadows_) return place;
+        place.ball = LightCones<C>::template ball<N>(p.px, p.py, p.pz);
+        const BoundingSphere<C> b = bounds_.sphere(i);
+        const C radius2 = b.radius * b.radius;
+        std::uint64_t outside = 0;  // NaN points count as outside
+        RT_VECTOR_LOOP
+        for (int k = 0; k < N; ++k) {
+            const C x = p.px[k] - b.x, y = p.py[k] - b.y, z = p.pz[k] - b.z;
+            outside |= x * x + y * y + z * z <= radius2 ? 0 : kLaneBits<N>.bit[k];
+        }
+        place.in_sphere = outside == 0;
+        if (enclosures_.encloses_a_light(i))
+            place.self_within = enclosures_.template points_within<N>(p.px, p.py, p.pz, i, kLaneBits<N>.bit);
+    }
+    return place;
+}
+
+// Sets l.lit to the lanes of packet p (on ellipsoid i) with light li in front that no
+// ellipsoid shadows, and returns whether there are any: all lanes at once where
+// packet_shadows_ (shadow_lanes(), with may_block and self_within from it), else lane by
+// lane (in_shadow()).
+template <typename Real>
+template <int N>
+bool Tracer<Real>::light_lit(const HitPacket<Real, N>& p, LightLanes<Real, N>& l, std::uint32_t i,
+                             std::size_t li, std::uint64_t may_block, std::uint64_t self_within,
+                             TraceScratch<Real>& scratch) const {
+    if constexpr (std::is_same_v<C, Real>) {
+        if (packet_shadows_) return shadow_lanes(p, l, i, li, may_block, self_within, scratch) != 0;
+    }
+    // The lanes' cells in the light buffer at once: point - light = -(L - P) exactly, so
+    // these are the cells in_shadow() would find (in double or wider; float's buffers
+    // are looked up in double from the point).
+    std::int32_t cells[N];
+    for (std::int32_t& c : cells) c = -1;
+    if constexpr (std::is_same_v<C, Real>) {
+        if (use_grids_) {
+            Real fx[N], fy[N], fz[N];
+            for (int k = 0; k < N; ++k) fx[k] = -l.tx[k], fy[k] = -l.ty[k], fz[k] = -l.tz[k];
+            light_grids_[li].template cells<N>(fx, fy, fz, cells);
+        }
+    }
+    const std::uint64_t self_clear = p.self_clear(l);
+    for (int k = 0; k < p.count; ++k) {
+        if ((l.front & kLaneBits<N>.bit[k]) == 0) continue;
+        const V point{p.px[k], p.py[k], p.pz[k]}, to_light{l.tx[k], l.ty[k], l.tz[k]};
+        const bool shadowed =
+            in_shadow(point, to_light, li, scratch,
+                      (self_clear & kLaneBits<N>.bit[k]) != 0 ? i : TraceScratch<Real>::kNone, cells[k]);
+        if (!shadowed) l.lit |= kLaneBits<N>.bit[k];
+    }
+    return true;
+}
+
 // The colours (Whitted::shade(), whitted.h) of up to N rays that hit ellipsoid i, ray k
 // from (ox, oy, oz)[k] along (dx, dy, dz)[k] at t[k] (hit_packet.h): the same
 // operations lane by lane; shadow rays are tested for all lanes at once where
@@ -96,32 +168,7 @@ void Tracer<Real>::hit_colours(std::uint32_t i, int count, const Real* ox, const
         p.self_terms(e.scale);
         if (!surface.no_specular) p.viewer();
         const LightTerms* terms = light_terms_.data() + std::size_t(i) * lights_.size();
-        // The lanes whose points lie within the own ellipsoid for Enclosures, once for
-        // all lights (the mirror room's points are on it, so within it for every light
-        // it encloses).
-        std::uint64_t self_within = 0;
-        // Whether every lane's point lies in the ellipsoid's bounding sphere, so that
-        // pair_blockers_'s sets apply (hit points lie on the ellipsoid: always, but
-        // checked, as the sets' argument needs it).
-        bool in_sphere = false;
-        // A ball around the points, for LightCones::packet().
-        typename LightCones<C>::Ball ball;
-        if constexpr (std::is_same_v<C, Real>) {
-            if (packet_shadows_) {
-                ball = LightCones<C>::template ball<N>(p.px, p.py, p.pz);
-                const BoundingSphere<C> b = bounds_.sphere(i);
-                const C radius2 = b.radius * b.radius;
-                std::uint64_t outside = 0;  // NaN points count as outside
-                RT_VECTOR_LOOP
-                for (int k = 0; k < N; ++k) {
-                    const C x = p.px[k] - b.x, y = p.py[k] - b.y, z = p.pz[k] - b.z;
-                    outside |= x * x + y * y + z * z <= radius2 ? 0 : kLaneBits<N>.bit[k];
-                }
-                in_sphere = outside == 0;
-            }
-            if (packet_shadows_ && enclosures_.encloses_a_light(i))
-                self_within = enclosures_.template points_within<N>(p.px, p.py, p.pz, i, kLaneBits<N>.bit);
-        }
+        const PacketPlace place = packet_place(p, i);
         // The lights in batches: first each light's terms (independent chains of
         // square roots and divisions, which overlap), then the shadow rays, then the
         // sums in the order of the lights.
@@ -141,42 +188,14 @@ void Tracer<Real>::hit_colours(std::uint32_t i, int count, const Real* ox, const
                         const std::size_t li = first + b;
                         if (lit_any[b])
                             may_block[b] = light_cones_.packet(
-                                li, lights_[li].position, ball,
-                                in_sphere ? pair_blockers_.set(i, li) : ~std::uint64_t(0));
+                                li, lights_[li].position, place.ball,
+                                place.in_sphere ? pair_blockers_.set(i, li) : ~std::uint64_t(0));
                     }
             }
-            for (std::size_t b = 0; b < size; ++b) {
-                if (!lit_any[b]) continue;
-                const std::size_t li = first + b;
-                LightLanes<Real, N>& l = batch[b];
-                if constexpr (std::is_same_v<C, Real>) {
-                    if (packet_shadows_) {
-                        lit_any[b] = shadow_lanes(p, l, i, li, may_block[b], self_within, scratch) != 0;
-                        continue;
-                    }
-                }
-                // The lanes' cells in the light buffer at once: point - light = -(L - P)
-                // exactly, so these are the cells in_shadow() would find (in double or
-                // wider; float's buffers are looked up in double from the point).
-                std::int32_t cells[N];
-                for (std::int32_t& c : cells) c = -1;
-                if constexpr (std::is_same_v<C, Real>) {
-                    if (use_grids_) {
-                        Real fx[N], fy[N], fz[N];
-                        for (int k = 0; k < N; ++k) fx[k] = -l.tx[k], fy[k] = -l.ty[k], fz[k] = -l.tz[k];
-                        light_grids_[li].template cells<N>(fx, fy, fz, cells);
-                    }
-                }
-                const std::uint64_t self_clear = p.self_clear(l);
-                for (int k = 0; k < count; ++k) {
-                    if ((l.front & kLaneBits<N>.bit[k]) == 0) continue;
-                    const V point{p.px[k], p.py[k], p.pz[k]}, to_light{l.tx[k], l.ty[k], l.tz[k]};
-                    const bool shadowed = in_shadow(
-                        point, to_light, li, scratch,
-                        (self_clear & kLaneBits<N>.bit[k]) != 0 ? i : TraceScratch<Real>::kNone, cells[k]);
-                    if (!shadowed) l.lit |= kLaneBits<N>.bit[k];
-                }
-            }
+            for (std::size_t b = 0; b < size; ++b)
+                if (lit_any[b])
+                    lit_any[b] =
+                        light_lit(p, batch[b], i, first + b, may_block[b], place.self_within, scratch);
             for (std::size_t b = 0; b < size; ++b) {
                 // No lane lit: the sums would keep every lane's colour (selects).
                 if (!lit_any[b]) continue;

@@ -347,17 +347,21 @@ private:
     }
 
     // The packets, in packet_shading.h: the colours of up to N hits on one ellipsoid,
-    // their shadow rays to one light, their mirrored rays.
+    // where their points lie, their shadow rays to one light, their mirrored rays.
     template <int N>
     void hit_colours(std::uint32_t i, int count, const Real* ox, const Real* oy, const Real* oz,
                      const Real* dx, const Real* dy, const Real* dz, const Real* t, const bool* inside,
                      int reflections_left, TraceScratch<Real>& scratch, V* colours) const;
-
+    struct PacketPlace;
+    template <int N>
+    PacketPlace packet_place(const HitPacket<Real, N>& p, std::uint32_t i) const;
+    template <int N>
+    bool light_lit(const HitPacket<Real, N>& p, LightLanes<Real, N>& l, std::uint32_t i, std::size_t li,
+                   std::uint64_t may_block, std::uint64_t self_within, TraceScratch<Real>& scratch) const;
     template <int N>
     std::uint64_t shadow_lanes(const HitPacket<Real, N>& p, LightLanes<Real, N>& l, std::uint32_t self,
                                std::size_t li, std::uint64_t may_block, std::uint64_t self_within,
                                TraceScratch<Real>& scratch) const;
-
     template <int N>
     void reflections(HitPacket<Real, N>& p, Real kr, int reflections_left, TraceScratch<Real>& scratch) const;
 
