@@ -7,12 +7,14 @@
 #include <fstream>
 #include <random>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
 #include "check.h"
 #include "raytracer/parser.h"
 #include "raytracer/scene_error.h"
+#include "raytracer/scene_lines.h"
 
 namespace {
 
@@ -389,4 +391,47 @@ TEST(a_large_file_reads_as_its_text) {
     CHECK(contains(message, ":" + std::to_string(lines.size()) + ": error: OUTPUT has 0 fields"));
     std::error_code ignored;
     fs::remove(path, ignored);
+}
+
+// split_line() (scene_lines.h) against a byte-by-byte reading of SPEC section 2, on
+// random lines of every byte value: tokens of every length about the eight-byte words
+// it skips, control and high bytes inside tokens, NUL and line ends anywhere.
+TEST(split_line_matches_a_byte_by_byte_split) {
+    auto separator = [](char c) { return c == ' ' || c == '\t' || c == '\v' || c == '\f'; };
+    auto line_end = [](char c) { return c == '\n' || c == '\r'; };
+    std::mt19937 random(7);
+    const std::string common = "SPHERE 0.5e-3 -12 abc\x01\x7f\xc3\xa9";
+    std::vector<std::string_view> tokens;
+    int mismatches = 0;
+    for (int round = 0; round < 20000; ++round) {
+        std::string line;
+        const std::size_t length = random() % 48;
+        for (std::size_t k = 0; k < length; ++k) {
+            const unsigned pick = random() % 16;
+            line += pick < 10   ? common[random() % common.size()]
+                    : pick < 13 ? " \t\v\f"[random() % 4]
+                    : pick < 15 ? static_cast<char>(random() % 256)
+                                : "\n\r"[random() % 2];
+        }
+        std::vector<std::string_view> expected;
+        std::size_t end = 0;
+        const std::string_view text(line);
+        for (std::size_t i = 0;;) {
+            while (i < text.size() && separator(text[i])) ++i;
+            if (i == text.size() || line_end(text[i])) {
+                end = i;
+                break;
+            }
+            if (text[i] == '\0') {
+                end = std::string_view::npos;
+                break;
+            }
+            const std::size_t start = i;
+            while (i < text.size() && !separator(text[i]) && !line_end(text[i]) && text[i] != '\0') ++i;
+            expected.push_back(text.substr(start, i - start));
+        }
+        const std::size_t got = rt::split_line(text, tokens);
+        mismatches += got != end || (end != std::string_view::npos && tokens != expected);
+    }
+    CHECK_EQ(mismatches, 0);
 }
