@@ -1,7 +1,5 @@
 // Reading a scene file: what is not a scene file at all (missing, unreadable, a folder,
 // too large, empty, UTF-16) is refused here, with no line; the text goes to parse_scene().
-#include <algorithm>
-#include <atomic>
 #include <cerrno>
 #include <cstdint>
 #include <cstdio>
@@ -11,6 +9,7 @@
 #include <string>
 #include <string_view>
 
+#include "raytracer/file_pieces.h"
 #include "raytracer/helper_pool.h"
 #include "raytracer/parser.h"
 #include "raytracer/scene_error.h"
@@ -18,43 +17,9 @@
 namespace rt {
 
 namespace {
-
-using File = std::unique_ptr<std::FILE, int (*)(std::FILE*)>;
-
-// A file of at least this many bytes is read in pieces on the helper threads too: each
-// copy lands in fresh pages, whose first touch costs about 2 us a page here (random
-// 100k's 26 MB on two threads: 21 -> 10 ms).
+// A file of at least this many bytes is read in pieces on the helper threads too
+// (file_pieces.h).
 constexpr std::size_t kReadInPiecesBytes = std::size_t{4} << 20;
-
-// Bytes [offset, offset + size) of the file into out, from a handle of its own; whether
-// they were all there and, where `last`, nothing after them.
-bool read_piece(const std::string& path, std::size_t offset, std::size_t size, bool last, char* out) {
-    const File in(std::fopen(path.c_str(), "rb"), &std::fclose);
-    return in && std::fseek(in.get(), static_cast<long>(offset), SEEK_SET) == 0 &&
-           std::fread(out, 1, size, in.get()) == size && (!last || std::fgetc(in.get()) == EOF);
-}
-
-// The file's `size` bytes into bytes, one piece per thread, each taken by whichever
-// thread is free; false where the file did not hold exactly that many (it changed).
-bool read_in_pieces(const std::string& path, std::size_t size, unsigned threads, char* bytes) {
-    const std::size_t pieces = threads, piece = size / pieces + 1;
-    std::atomic<std::size_t> next{0};
-    std::atomic<bool> whole{true};
-    auto read_pieces = [&] {
-        for (std::size_t k; (k = next++) < pieces;) {
-            const std::size_t first = std::min(size, k * piece), last = std::min(size, first + piece);
-            if (!read_piece(path, first, last - first, k + 1 == pieces, bytes + first)) whole = false;
-        }
-    };
-    using ReadPieces = decltype(read_pieces);
-    HelperPool::Job helpers;
-    helpers.start(
-        threads - 1, [](void* context, unsigned) { (*static_cast<ReadPieces*>(context))(); }, &read_pieces);
-    read_pieces();
-    helpers.finish();
-    return whole;
-}
-
 }  // namespace
 
 Scene load_scene(const std::string& path) {
@@ -78,16 +43,17 @@ Scene load_scene(const std::string& path) {
                    : SceneError(path, 0,
                                 "cannot be opened for reading" + cause + ", expected a readable scene file");
     };
-    const File in(std::fopen(path.c_str(), "rb"), &std::fclose);
+    const std::unique_ptr<std::FILE, int (*)(std::FILE*)> in(std::fopen(path.c_str(), "rb"), &std::fclose);
     if (!in) throw cannot_read(false, errno);
     const unsigned threads = available_cores();
     std::error_code ec;
     const std::uintmax_t size = std::filesystem::file_size(path, ec);
     // A large file of known size: read in pieces, into bytes left unset until then.
     std::unique_ptr<char[]> bytes;
-    if (!ec && size >= kReadInPiecesBytes && size <= kMaxSceneFileBytes && threads > 1) {
+    if (kReadsInPieces && !ec && size >= kReadInPiecesBytes && size <= kMaxSceneFileBytes && threads > 1) {
         bytes.reset(new char[static_cast<std::size_t>(size)]);
-        if (!read_in_pieces(path, static_cast<std::size_t>(size), threads, bytes.get())) bytes.reset();
+        // On failure the stream read below starts where the handle was: at the start.
+        if (!read_in_pieces(in.get(), static_cast<std::size_t>(size), threads, bytes.get())) bytes.reset();
     }
     std::string streamed;
     if (!bytes) {

@@ -1,10 +1,13 @@
 // The scene parser: layouts the course files use, number forms, and the first
 // mistake reported on its own line.
+#include <algorithm>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <random>
 #include <string>
 #include <string_view>
@@ -12,6 +15,7 @@
 #include <vector>
 
 #include "check.h"
+#include "raytracer/file_pieces.h"
 #include "raytracer/parser.h"
 #include "raytracer/scene_error.h"
 #include "raytracer/scene_lines.h"
@@ -346,7 +350,8 @@ bool same_scene(const rt::Scene& a, const rt::Scene& b) {
     };
     bool same = a.spheres.size() == b.spheres.size() && a.lights.size() == b.lights.size() &&
                 a.output == b.output && a.output_line == b.output_line && a.columns == b.columns &&
-                a.rows == b.rows && a.near_plane == b.near_plane && same_vec(a.ambient, b.ambient) &&
+                a.rows == b.rows && a.near_plane == b.near_plane && a.left == b.left && a.right == b.right &&
+                a.bottom == b.bottom && a.top == b.top && same_vec(a.ambient, b.ambient) &&
                 same_vec(a.background, b.background);
     for (std::size_t i = 0; same && i < a.spheres.size(); ++i) {
         const rt::SphereSpec &x = a.spheres[i], &y = b.spheres[i];
@@ -362,35 +367,72 @@ bool same_scene(const rt::Scene& a, const rt::Scene& b) {
     return same;
 }
 
+// A file of its own in the temporary folder, removed however the test ends.
+struct TempFile {
+    std::filesystem::path path;
+    explicit TempFile(const std::string& bytes) {
+        std::random_device random;
+        path = std::filesystem::temp_directory_path() /
+               ("raytracer-unit-parser-" + std::to_string(random()) + std::to_string(random()) + ".txt");
+        write(bytes);
+    }
+    ~TempFile() {
+        std::error_code ignored;
+        std::filesystem::remove(path, ignored);
+    }
+    void write(const std::string& bytes) const {
+        std::ofstream out(path, std::ios::binary);
+        out << bytes;
+    }
+};
+
 }  // namespace
+
+// read_in_pieces() (file_pieces.h) gives the file's bytes for any number of pieces, up
+// to more pieces than bytes, and false for a size the file does not have (a file that
+// changed since its size was taken); it leaves the handle's position as it was.
+TEST(read_in_pieces_gives_the_file_or_false) {
+    std::mt19937 random(3);
+    std::string bytes(300001, ' ');
+    for (char& c : bytes) c = static_cast<char>(random() % 256);
+    const TempFile file(bytes);
+    const std::unique_ptr<std::FILE, int (*)(std::FILE*)> in(std::fopen(file.path.string().c_str(), "rb"),
+                                                             &std::fclose);
+    CHECK(in != nullptr);
+    if (!in) return;
+    std::vector<char> got(bytes.size() + 1);
+    for (unsigned threads : {1U, 2U, 3U, 7U, 64U}) {
+        std::fill(got.begin(), got.end(), '\0');
+        CHECK_EQ(rt::read_in_pieces(in.get(), bytes.size(), threads, got.data()), rt::kReadsInPieces);
+        if (rt::kReadsInPieces) CHECK(std::string(got.data(), bytes.size()) == bytes);
+        CHECK(!rt::read_in_pieces(in.get(), bytes.size() - 1, threads, got.data()));  // more follows
+        CHECK(!rt::read_in_pieces(in.get(), bytes.size() + 1, threads, got.data()));  // short
+    }
+    CHECK_EQ(std::ftell(in.get()), 0L);
+}
 
 // A file large enough to be read in pieces (load_scene.cpp: 4 MiB, on a machine of two
 // cores or more) reads as its text, and a mistake on its last line is reported there.
 TEST(a_large_file_reads_as_its_text) {
-    namespace fs = std::filesystem;
-    std::random_device random;
-    const fs::path path =
-        fs::temp_directory_path() / ("raytracer-unit-parser-" + std::to_string(random()) + ".txt");
     std::vector<std::string> lines = many_lines(60000);
-    std::string text = joined(lines);
+    const std::string text = joined(lines);
     CHECK(text.size() >= (std::size_t{4} << 20));
-    auto write = [&](const std::string& bytes) {
-        std::ofstream out(path, std::ios::binary);
-        out << bytes;
-    };
-    write(text);
-    CHECK(same_scene(rt::load_scene(path.string()), rt::parse_scene(text, path.string(), 1)));
+    const TempFile file(text);
+    const std::string path = file.path.string();
+    try {
+        CHECK(same_scene(rt::load_scene(path), rt::parse_scene(text, path, 1)));
+    } catch (const rt::SceneError& e) {
+        CHECK_EQ(std::string(e.what()), std::string());
+    }
     lines.back() = "OUTPUT";
-    write(joined(lines));
+    file.write(joined(lines));
     std::string message;
     try {
-        rt::load_scene(path.string());
+        rt::load_scene(path);
     } catch (const rt::SceneError& e) {
         message = e.what();
     }
     CHECK(contains(message, ":" + std::to_string(lines.size()) + ": error: OUTPUT has 0 fields"));
-    std::error_code ignored;
-    fs::remove(path, ignored);
 }
 
 // split_line() (scene_lines.h) against a byte-by-byte reading of SPEC section 2, on

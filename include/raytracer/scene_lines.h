@@ -28,11 +28,13 @@ struct ByteKinds {
 inline constexpr ByteKinds kByteKinds;
 inline unsigned char kind_of(char c) { return kByteKinds.of[static_cast<unsigned char>(c)]; }
 
-// From i, past the words of eight bytes that are all part of a token: every byte that
-// is not (separators, line ends, NUL) is below 0x21, and a word holds one exactly when
-// (w - 0x21...21) & ~w & 0x80...80 is not zero (S. E. Anderson, "Bit Twiddling Hacks":
-// "determine if a word has a byte less than n", for n <= 128, in either byte order).
-// A number's token then costs a few words rather than a table look-up a byte.
+// From i, past the words of eight bytes that are all part of a token. Every byte that
+// can end a token (a separator, a line end, NUL) is below 0x21, and a word holds a byte
+// below 0x21 exactly when (w - 0x21...21) & ~w & 0x80...80 is not zero (S. E. Anderson,
+// "Bit Twiddling Hacks": "determine if a word has a byte less than n", n <= 128, in
+// either byte order). The control bytes 0x01-0x1F that tokens may hold stop the words
+// too; split_line()'s look-up a byte goes on past them. A number's token then costs a
+// few words rather than a table look-up a byte.
 inline std::size_t past_token_words(std::string_view text, std::size_t i) {
     constexpr std::uint64_t kOnes = 0x0101010101010101U, kHighs = 0x8080808080808080U;
     for (std::uint64_t w; i + 8 <= text.size(); i += 8) {
