@@ -12,7 +12,7 @@
 namespace rt {
 
 #ifndef RAYTRACER_EXTRA_PRECISIONS  // (see the end of this file)
-unsigned default_thread_count() { return available_cores(); }
+unsigned threads_asked(unsigned threads) { return threads == 0 ? available_cores() : threads; }
 #endif
 
 template <typename Real>

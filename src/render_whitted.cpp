@@ -17,9 +17,6 @@
 namespace rt {
 
 namespace {
-// The threads asked for (0: all cores).
-unsigned threads_asked(unsigned threads) { return threads == 0 ? default_thread_count() : threads; }
-
 // The threads a render uses: as asked, at most one per row.
 unsigned thread_count(const Scene& scene, unsigned threads) {
     return std::min<unsigned>(threads_asked(threads), static_cast<unsigned>(scene.rows));

@@ -8,11 +8,11 @@
 
 namespace rt {
 
-// The number of threads render() uses by default: all cores.
-unsigned default_thread_count();
+// The threads a render is asked for: `threads`, or all cores where it is 0.
+unsigned threads_asked(unsigned threads);
 
 // Instantiated for float, double and long double (src/render.cpp). threads = 0 means
-// default_thread_count(); the image is byte-identical for any number of threads.
+// all cores (threads_asked()); the image is byte-identical for any number of threads.
 // accelerate = false renders through the reference path (whitted.h with brute_force.h:
 // every ray against every ellipsoid), which the tests hold the fast paths to.
 template <typename Real>

@@ -263,7 +263,7 @@ private:
 
 template <typename Real>
 void render_flat_sweep_to(const Scene& scene, RowSink& sink, unsigned threads) {
-    const unsigned most_threads = threads == 0 ? default_thread_count() : threads;
+    const unsigned most_threads = threads_asked(threads);
     FlatSweep<Real> sweep(scene, sink, most_threads);
     // Each helper's working memory is made here, so that a helper thread allocates
     // nothing (its first allocation would set up a malloc arena of its own).

@@ -106,9 +106,9 @@ typename Tracer<Real>::PacketPlace Tracer<Real>::packet_place(const HitPacket<Re
 }
 
 // Sets l.lit to the lanes of packet p (on ellipsoid i) with light li in front that no
-// ellipsoid shadows, and returns whether there are any: all lanes at once where
-// packet_shadows_ (shadow_lanes(), with may_block and self_within from it), else lane by
-// lane (in_shadow()).
+// ellipsoid shadows: all lanes at once where packet_shadows_ (shadow_lanes(), with
+// may_block and self_within from it; false where no lane is lit, so that the sums are
+// skipped), else lane by lane (in_shadow(); true: the sums select by l.lit).
 template <typename Real>
 template <int N>
 bool Tracer<Real>::light_lit(const HitPacket<Real, N>& p, LightLanes<Real, N>& l, std::uint32_t i,
