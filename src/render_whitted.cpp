@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -28,12 +29,19 @@ constexpr int kBandRows = 4;
 // A tile: kBandRows rows by kTileColumns columns, traced together (whitted_tiles.h).
 constexpr int kTileColumns = 4;
 
+// What the pixel by pixel path has in place of tiles.
+struct Nothing {
+    template <typename Tracer>
+    explicit Nothing(const Tracer&) {}
+};
+
 // The image through Whitted<Real, Geometry> on count threads, rows shared: each pixel on
 // its own, or where kTiles a tile at a time (the same bytes).
 template <bool kTiles, typename Real, typename Geometry>
 void render_pixels_to(const Scene& scene, Geometry geometry, RowSink& sink, unsigned count) {
     const Whitted<Real, Geometry> tracer(scene, std::move(geometry));
-    const WhittedTiles<kBandRows * kTileColumns, Real, Geometry> tiles(tracer);
+    using Tiles = std::conditional_t<kTiles, WhittedTiles<kBandRows * kTileColumns, Real, Geometry>, Nothing>;
+    const Tiles tiles(tracer);
     const std::size_t row_bytes = static_cast<std::size_t>(scene.columns) * 3;
     RowRing ring(sink, scene.rows, row_bytes, kBandRows, count);
     std::vector<Real> column_x(static_cast<std::size_t>(scene.columns));

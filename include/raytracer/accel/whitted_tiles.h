@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "raytracer/accel/light_shells.h"
 #include "raytracer/accel/slab_rays.h"
 #include "raytracer/bit_scan.h"
 #include "raytracer/image.h"
@@ -31,6 +32,9 @@ public:
     static_assert(N >= 1 && N <= 32, "a tile's lanes are the bits of an unsigned");
 
     explicit WhittedTiles(const Tracer& tracer) : tracer_(tracer) {
+        std::vector<V> lights(tracer.light_count());
+        for (std::size_t li = 0; li < lights.size(); ++li) lights[li] = tracer.light_position(li);
+        shells_ = LightShells<Real>(tracer.geometry(), lights);
         const V& back = tracer.background();
         background_[0] = to_byte(back.x), background_[1] = to_byte(back.y), background_[2] = to_byte(back.z);
     }
@@ -121,19 +125,26 @@ private:
         const L abs_c = abs(dot(mapped, mapped) - L(1));
         for (unsigned m = hits; m != 0; m &= m - 1)
             b.point[lowest_bit(m)] = lane(b.surface.point, lowest_bit(m));
+        unsigned in_shell[LightShells<Real>::kMax];  // the lanes whose points each shell holds
+        for (int s = 0; s < shells_.count(); ++s)
+            in_shell[s] = hits & static_cast<unsigned>(shells_.holding(s, b.surface.point));
         for (std::size_t li = 0; li < tracer_.light_count() && lit != 0; ++li) {
             const LightRay<L> r = light_ray(b.surface, Vec3<L>::from(tracer_.light_position(li)));
             const unsigned facing = lit & static_cast<unsigned>(r.faces);  // with a light ray to try
             // The lanes whose own ellipsoid cannot block their shadow ray (seen from outside).
             const auto own_clear = static_cast<unsigned>(
                 ~inside & leaves_own_ellipsoid<Real>(b.surface.scaled_length, r.distance, r.n_dot_l, abs_c));
+            ClearedLanes in_shells;  // this light's shells, for the lanes they hold
+            for (unsigned m = shells_.of_light(li); m != 0; m &= m - 1)
+                in_shells.add(shells_.ellipsoid(lowest_bit(m)), in_shell[lowest_bit(m)]);
             unsigned blocked = 0;
             for (unsigned left = facing; left != 0;) {
                 const unsigned bundle = close_lanes(b, left);  // on one ellipsoid, or one lane
                 left &= ~bundle;
-                blocked |= tracer_.geometry().occluded(
-                    b.point, tracer_.light_position(li), bundle, scratch.tracer.blockers[li],
-                    b.hit[lowest_bit(bundle)].ellipsoid, own_clear & bundle);
+                ClearedLanes cleared = in_shells;
+                cleared.add(b.hit[lowest_bit(bundle)].ellipsoid, own_clear & bundle);
+                blocked |= tracer_.geometry().occluded(b.point, tracer_.light_position(li), bundle,
+                                                       scratch.tracer.blockers[li], cleared);
             }
             add_light(b.colour, b.surface, r, Vec3<L>::from(tracer_.light_intensity(li)), b.finish,
                       LaneBits(facing & ~blocked));
@@ -175,6 +186,7 @@ private:
     }
 
     const Tracer& tracer_;
+    LightShells<Real> shells_;    // the ellipsoids that hold a light
     std::uint8_t background_[3];  // the bytes of BACK
 };
 

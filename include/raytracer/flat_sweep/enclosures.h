@@ -1,15 +1,7 @@
-// Shadow rays that run inside an ellipsoid enclosing the light cannot be blocked by it.
-//
-// WHY: in a mirror room (the eye and the lights inside a large ellipsoid) every shadow
-// ray's line meets the room's shell, so neither bounding spheres nor light buffers can
-// cull it; yet an ellipsoid is convex, so a segment from a point inside it (or on it)
-// to a light well inside it stays inside and only touches the shell at its start.
-// Exactly: with f(t) = |o' + t d'|^2 - 1 in the unit sphere's space, convex in t,
-// f(0) <= 1e-10 and f(1) <= -1e-3 give f(t) < 0 for all t in (1e-7, 1], so the roots
-// intersect() computes lie at t < 1e-7 + rounding and t > 1 + 1e-4 or so: none in
-// (0.001, 1), which is intersect()'s "not blocked". Skipping the test cannot change an
-// image. Only used at double precision or wider, where the point's own rounding is
-// far below 1e-10. Measured gain in docs/speed.md.
+// Shadow rays that run inside an ellipsoid enclosing the light cannot be blocked by it:
+// the flat sweep's tables of the rule of light_shells.h (why it is exact is stated there),
+// per ellipsoid and light. Only used at double precision or wider. Measured gain in
+// docs/speed.md.
 #pragma once
 
 #include <cstddef>
@@ -18,6 +10,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "raytracer/accel/light_shells.h"
 #include "raytracer/reference/ellipsoid.h"
 #include "raytracer/scene_precision.h"
 #include "raytracer/vec3.h"
@@ -41,7 +34,7 @@ public:
         light_inside_.assign(lights.size() * n_, 0);
         for (std::size_t l = 0; l < lights.size(); ++l)
             for (std::size_t i = 0; i < n_; ++i)
-                light_inside_[l * n_ + i] = unit_radius2(Vec3<C>::from(lights[l]), i) <= C(1) - C(1e-3);
+                light_inside_[l * n_ + i] = shell_holds_light(unit_radius2(Vec3<C>::from(lights[l]), i));
         any_light_inside_.assign(n_, 0);
         for (std::size_t l = 0; l < lights.size(); ++l)
             for (std::size_t i = 0; i < n_; ++i) any_light_inside_[i] |= light_inside_[l * n_ + i];
@@ -83,16 +76,14 @@ public:
     bool light_within(std::size_t light_index, std::size_t i) const {
         return !light_inside_.empty() && light_inside_[light_index * n_ + i];
     }
-    static bool point_within(C o2) { return o2 <= C(1) + C(1e-10); }
+    static bool point_within(C o2) { return shell_holds_point(o2); }
     // Whether light_within(l, i) holds for some light l.
     bool encloses_a_light(std::size_t i) const { return !any_light_inside_.empty() && any_light_inside_[i]; }
 
 private:
-    // |(p - centre) / scale|^2: below 1 inside, 1 on the surface. A product by the
-    // reciprocal is fine here, as only a bound with a wide margin is decided.
+    // |(p - centre) / scale|^2 of ellipsoid i (light_shells.h).
     C unit_radius2(const Vec3<C>& p, std::size_t i) const {
-        const Vec3<C> u = (p - centre_[i]) * inverse_scale_[i];
-        return dot(u, u);
+        return rt::unit_radius2(p, centre_[i], inverse_scale_[i]);
     }
 
     std::size_t n_ = 0;
