@@ -32,7 +32,7 @@ constexpr int kTileColumns = 4;
 // What the pixel by pixel path has in place of tiles.
 struct Nothing {
     template <typename Tracer>
-    explicit Nothing(const Tracer&) {}
+    explicit Nothing(const Tracer& /*unused*/) {}
 };
 
 // The image through Whitted<Real, Geometry> on count threads, rows shared: each pixel on
