@@ -248,7 +248,7 @@ TEST(bvh_closest_bundles_match_brute_force) {
 // Scenes of at most 16 ellipsoids, where rays from different origins go as a bundle too.
 TEST(bvh_closest_bundles_of_mirrored_rays_match_brute_force) {
     for (unsigned seed = 1; seed <= 12; ++seed) {
-        const auto n = static_cast<std::size_t>(2 + seed);
+        const std::size_t n = std::size_t{2} + seed;
         Crowd<double> c = crowd<double>(seed, static_cast<int>(n));
         c.all.resize(std::min(c.all.size(), n));
         CHECK_EQ(closest_lanes_differing(c, seed, 1500), 0);
