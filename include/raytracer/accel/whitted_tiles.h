@@ -46,6 +46,10 @@ public:
     struct Bounce {
         V origin[N], direction[N];  // as the geometry's bundle queries take them
         NearestHit<Real> hit[N];
+        struct Gathered {  // each hit's terms in its lane
+            Vec3<L> origin, direction, centre, scale, scale_squared, ambient;
+            L t;
+        } gathered;
         V point[N];  // the hit points, for the shadow bundles and the next bounce
         SurfacePoint<L> surface;
         Finish<L> finish;
@@ -96,8 +100,7 @@ private:
         const Vec3<L> miss = Vec3<L>::from(depth == 0 ? tracer_.background() : V{});
         const bool may_reflect = depth < kMaxReflections;
         unsigned hits = 0, lit = 0, reflecting = 0;
-        Vec3<L> origin, direction, centre, scale, scale_squared, ambient;
-        L t(Real(0));
+        auto& [origin, direction, centre, scale, scale_squared, ambient, t] = b.gathered;
         LaneBits inside = 0;
         for (unsigned m = lanes; m != 0; m &= m - 1) {  // gather each hit's terms into its lane
             const int k = lowest_bit(m);
