@@ -61,25 +61,12 @@ void render_pixels_to(const Scene& scene, Geometry geometry, RowSink& sink, unsi
             const int end = std::min(r + kBandRows, scene.rows);
             ring.reserve(end);
             if constexpr (kTiles) {
+                static_assert(Tiles::kRows == kBandRows, "a band is a row of tiles");
                 Real band_y[kBandRows] = {};
                 std::uint8_t* band_out[kBandRows] = {};
                 for (int row = r; row < end; ++row)
                     band_y[row - r] = tracer.row_y(row), band_out[row - r] = ring.row(row);
-                for (int c0 = 0; c0 < scene.columns; c0 += kTileColumns) {
-                    // Only the lanes in `lanes` are read.
-                    Real x[kBandRows * kTileColumns], y[kBandRows * kTileColumns];
-                    std::uint8_t* out[kBandRows * kTileColumns];
-                    unsigned lanes = 0;
-                    const int c_end = std::min(c0 + kTileColumns, scene.columns);
-                    for (int b = 0; b < end - r; ++b)
-                        for (int c = c0; c < c_end; ++c) {
-                            const int k = b * kTileColumns + (c - c0);
-                            x[k] = column_x[static_cast<std::size_t>(c)], y[k] = band_y[b];
-                            out[k] = band_out[b] + static_cast<std::size_t>(c) * 3;
-                            lanes |= 1U << k;
-                        }
-                    tiles.pixels(x, y, lanes, out, scratch);
-                }
+                tiles.band(column_x.data(), scene.columns, band_y, band_out, end - r, scratch);
             } else {
                 for (int row = r; row < end; ++row) {
                     std::uint8_t* const out = ring.row(row);

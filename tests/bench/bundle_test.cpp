@@ -222,6 +222,39 @@ int shell_lanes_differing(Crowd<Real> c, unsigned seed, int bundles, long& skipp
     return differing;
 }
 
+// Bvh::may_meet() over ranges of directions from one origin (the camera, or anywhere),
+// narrow and wide, some straddling zero on an axis: where it says no, no ray of 64 in the
+// range, its corners among them, hits anything (BruteForce::closest()). misses counts
+// the ranges it rules out, so that the test has something to check.
+template <typename Real>
+int may_meet_wrong(const Crowd<Real>& c, unsigned seed, int ranges, long& misses) {
+    using V = rt::Vec3<Real>;
+    using C = rt::AtLeastDouble<Real>;
+    const rt::BruteForce<Real> plain(c.all);
+    const rt::Bvh<Real> tree(c.all);
+    std::mt19937 g(seed);
+    int wrong = 0;
+    for (int r = 0; r < ranges; ++r) {
+        const V origin =
+            g() % 2 ? V{} : V{Real(uniform(g, -6, 6)), Real(uniform(g, -6, 6)), Real(uniform(g, -6, 6))};
+        const double width = g() % 2 ? 0.01 : 0.3;
+        C lo[3], hi[3];
+        for (int a = 0; a < 3; ++a) {
+            const double middle = uniform(g, -1, 1);
+            lo[a] = C(Real(middle - uniform(g, 0, width))), hi[a] = C(Real(middle + uniform(g, 0, width)));
+        }
+        if (tree.may_meet(origin, lo, hi)) continue;
+        ++misses;
+        for (int k = 0; k < 64; ++k) {
+            auto pick = [&](int a) {
+                return k < 8 ? ((k >> a) & 1 ? hi[a] : lo[a]) : C(uniform(g, double(lo[a]), double(hi[a])));
+            };
+            const V d{Real(pick(0)), Real(pick(1)), Real(pick(2))};
+            for (const double min_t : {1.0, 0.0001}) wrong += plain.closest(origin, d, min_t).found();
+        }
+    }
+    return wrong;
+}
 }  // namespace
 
 TEST(bvh_shadow_bundles_match_brute_force) {
@@ -270,4 +303,16 @@ TEST(shells_skip_only_shadow_rays_they_cannot_block) {
     }
     std::cout << "  shells skipped for " << skipped << " lanes\n";
     CHECK(skipped > 10000);
+}
+
+TEST(bvh_may_meet_says_no_only_where_no_ray_hits) {
+    long misses = 0;
+    for (unsigned seed = 1; seed <= 8; ++seed) {
+        const int n = 20 + static_cast<int>(seed) * 30;
+        CHECK_EQ(may_meet_wrong(crowd<float>(seed, n), seed, 2000, misses), 0);
+        CHECK_EQ(may_meet_wrong(crowd<double>(seed, n), seed, 2000, misses), 0);
+        CHECK_EQ(may_meet_wrong(crowd<long double>(seed, n), seed, 1000, misses), 0);
+    }
+    std::cout << "  ranges ruled out: " << misses << "\n";
+    CHECK(misses > 500);
 }

@@ -164,6 +164,23 @@ public:
         });
     }
 
+    // Whether a ray from origin with a direction within [d_lo, d_hi] (per axis) may meet
+    // some ellipsoid's box: where not, closest() finds nothing for any such ray, alone or
+    // in a bundle (the bundle's own culling, for the whole range at once).
+    bool may_meet(const V& origin, const C (&d_lo)[3], const C (&d_hi)[3]) const {
+        const C o[3] = {C(origin.x), C(origin.y), C(origin.z)};
+        SlabRay<C> ray;
+        if (items_.empty()) return false;
+        if (!make_slab_ray(o, o, d_lo, d_hi, ray) || !guarded(o, o)) return true;
+        bool met = false;
+        traverse<false, true>(ray, std::numeric_limits<C>::infinity(), [&](Child leaf, C& t1) {
+            for (std::uint32_t i = leaf.first; i < leaf.first + leaf.count && !met; ++i)
+                met = meets_box(ray, inflated_box<C>(items_[i]), t1);
+            return met;
+        });
+        return met;
+    }
+
     // As BruteForce::occluded(): whether some ellipsoid blocks the shadow ray, trying
     // first the one that blocked this light last (blocker: a position in leaf order).
     // The ellipsoids in cleared (bit 0) are not tried: the caller knows that they cannot

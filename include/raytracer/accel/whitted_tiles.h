@@ -67,6 +67,48 @@ public:
         return {tracer_.make_scratch(), std::vector<Bounce>(kMaxReflections + 1)};
     }
 
+    // The bytes of a band of `rows` <= kRows rows, the eye rays of row b through y[b] on
+    // the near plane and its bytes from out[b], and `columns` columns, column c's through
+    // column_x[c]: a tile of kRows x kColumns pixels at a time, except that a block of
+    // kBlockColumns columns whose eye rays can meet no ellipsoid's box (Bvh::may_meet())
+    // gets BACK's bytes without a tile being set up. Blocks of 1 / 2 / 4 / 8 tiles:
+    // testSample through the tree 89.3 / 85.4 / 83.7 / 82.7 M instructions, testImgPlane
+    // (mostly covered) 152.4 / 149.1 / 147.4 / 146.6 M, against 116.7 M and 144.8 M
+    // with no blocks (callgrind, whole runs).
+    static constexpr int kRows = 4, kColumns = N / kRows, kBlockColumns = 8 * kColumns;
+    void band(const Real* column_x, int columns, const Real* y, std::uint8_t* const* out, int rows,
+              Scratch& scratch) const {
+        using C = AtLeastDouble<Real>;
+        C y_lo = C(y[0]), y_hi = C(y[0]);
+        for (int b = 1; b < rows; ++b) y_lo = std::min(y_lo, C(y[b])), y_hi = std::max(y_hi, C(y[b]));
+        for (int block = 0; block < columns; block += kBlockColumns) {
+            const int block_end = std::min(block + kBlockColumns, columns);
+            C x_lo = C(column_x[block]), x_hi = x_lo;
+            for (int c = block + 1; c < block_end; ++c)
+                x_lo = std::min(x_lo, C(column_x[c])), x_hi = std::max(x_hi, C(column_x[c]));
+            const C near_z = C(tracer_.near_z());
+            if (!tracer_.geometry().may_meet(V{}, {x_lo, y_lo, near_z}, {x_hi, y_hi, near_z})) {
+                for (int b = 0; b < rows; ++b)
+                    for (int c = block; c < block_end; ++c)
+                        std::copy(background_, background_ + 3, out[b] + std::ptrdiff_t{3} * c);
+                continue;
+            }
+            for (int c0 = block; c0 < block_end; c0 += kColumns) {
+                Real x[N], tile_y[N];  // only the lanes in `lanes` are read
+                std::uint8_t* tile_out[N];
+                unsigned lanes = 0;
+                const int c_end = std::min(c0 + kColumns, block_end);
+                for (int b = 0; b < rows; ++b)
+                    for (int c = c0; c < c_end; ++c) {
+                        const int k = b * kColumns + (c - c0);
+                        x[k] = column_x[c], tile_y[k] = y[b], tile_out[k] = out[b] + std::ptrdiff_t{3} * c;
+                        lanes |= 1U << k;
+                    }
+                pixels(x, tile_y, lanes, tile_out, scratch);
+            }
+        }
+    }
+
     // The bytes of up to N pixels whose eye rays go from the camera through (x[k], y[k]),
     // for each lane k in lanes, to out[k].
     void pixels(const Real (&x)[N], const Real (&y)[N], unsigned lanes, std::uint8_t* const (&out)[N],
