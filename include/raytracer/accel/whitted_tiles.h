@@ -89,8 +89,9 @@ public:
             const C near_z = C(tracer_.near_z());
             if (!tracer_.geometry().may_meet(V{}, {x_lo, y_lo, near_z}, {x_hi, y_hi, near_z})) {
                 for (int b = 0; b < rows; ++b)
-                    for (int c = block; c < block_end; ++c)
-                        std::copy(background_, background_ + 3, out[b] + std::ptrdiff_t{3} * c);
+                    for (std::uint8_t* p = out[b] + std::ptrdiff_t{3} * block;
+                         p != out[b] + std::ptrdiff_t{3} * block_end; p += 3)
+                        p[0] = background_[0], p[1] = background_[1], p[2] = background_[2];
                 continue;
             }
             for (int c0 = block; c0 < block_end; c0 += kColumns) {
