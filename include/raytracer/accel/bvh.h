@@ -207,12 +207,13 @@ public:
     template <int N>
     unsigned occluded(const V (&points)[N], const V& light, unsigned lanes, std::uint32_t& blocker,
                       const ClearedLanes& cleared = {}) const {
-        V to_light[N];
-        for (unsigned m = lanes; m != 0; m &= m - 1) to_light[lowest_bit(m)] = light - points[lowest_bit(m)];
         if (lanes == 0 || (lanes & (lanes - 1)) == 0) {  // one ray
             const int k = lanes == 0 ? 0 : lowest_bit(lanes);
-            return lanes != 0 && occluded(points[k], to_light[k], blocker, cleared.lane(k)) ? lanes : 0U;
+            return lanes != 0 && occluded(points[k], light - points[k], blocker, cleared.lane(k)) ? lanes
+                                                                                                  : 0U;
         }
+        V to_light[N];
+        for (unsigned m = lanes; m != 0; m &= m - 1) to_light[lowest_bit(m)] = light - points[lowest_bit(m)];
         C o_lo[3], o_hi[3], d_lo[3], d_hi[3];
         bounds_of(points, lanes, o_lo, o_hi);
         const C to[3] = {C(light.x), C(light.y), C(light.z)};
