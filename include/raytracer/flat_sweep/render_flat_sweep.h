@@ -11,12 +11,12 @@
 
 namespace rt {
 
-// Up to this many ellipsoids the flat sweep is faster than the tree. Whole process, one thread, CPU time,
-// medians of 5: random scenes (scale_scenes.h) of 300 / 500 / 700 / 1,000 ellipsoids 0.03 / 0.04 / 0.06 /
-// 0.07 s flat against 0.07 / 0.09 / 0.10 / 0.10 s in the tree; sphereflake level 3
-// (821) 0.07 s flat against 0.05 s in the tree; past a few thousand the flat sweep's tables stop at
-// their limits and it is many times slower (random 4,000: 3.9 s).
-inline constexpr std::size_t kFlatSweepEllipsoids = 512;
+// Up to this many ellipsoids the flat sweep is faster than the tree. Whole process, 2 threads, wall,
+// interleaved, medians of 15 (2026-12-02): random scenes (scale_scenes.h) of 300 / 400 / 500 ellipsoids
+// 32.7 / 47.1 / 46.4 ms flat against 25.7 / 33.4 / 32.3 ms in the tree; the first 300 / 400 / 500 of
+// sphereflake 3 26.4 / 34.6 / 42.5 ms flat against 28.5 / 31.9 / 34.8 ms. Past a few thousand the flat
+// sweep's tables stop at their limits and it is many times slower (random 4,000: 3.9 s).
+inline constexpr std::size_t kFlatSweepEllipsoids = 384;
 // and while ellipsoids x lights stay below this: the flat sweep keeps tables per
 // ellipsoid and light (about 100 bytes a pair), the tree nothing per pair.
 inline constexpr std::size_t kFlatSweepPairs = 65536;
