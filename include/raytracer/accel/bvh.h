@@ -39,6 +39,7 @@
 #include <vector>
 
 #include "raytracer/accel/bvh_build.h"
+#include "raytracer/accel/cleared_lanes.h"
 #include "raytracer/accel/slab_rays.h"
 #include "raytracer/bit_scan.h"
 #include "raytracer/compiler.h"
@@ -48,33 +49,6 @@
 #include "raytracer/vec3.h"
 
 namespace rt {
-
-// Ellipsoids that a shadow query's caller knows cannot block some of its rays, each with
-// those rays' lanes (bit k for lane k; bit 0 for a query of one ray): the ellipsoid a
-// point lies on, seen from outside (leaves_own_ellipsoid(), spec_rules.h), and shells
-// that hold both a point and the light (light_shells.h). The query skips them there.
-struct ClearedLanes {
-    static constexpr int kMax = 5;
-    std::uint32_t ellipsoid[kMax] = {};
-    unsigned lanes[kMax] = {};
-    int count = 0;
-
-    void add(std::uint32_t i, unsigned cleared) {
-        if (cleared != 0 && count < kMax) ellipsoid[count] = i, lanes[count++] = cleared;
-    }
-    // The lanes for which ellipsoid i is cleared.
-    unsigned of(std::uint32_t i) const {
-        unsigned cleared = 0;
-        for (int j = 0; j < count; ++j) cleared |= ellipsoid[j] == i ? lanes[j] : 0U;
-        return cleared;
-    }
-    // Lane k's entries, as bit 0: for lane k's ray on its own.
-    ClearedLanes lane(int k) const {
-        ClearedLanes one;
-        for (int j = 0; j < count; ++j) one.add(ellipsoid[j], (lanes[j] >> k) & 1U);
-        return one;
-    }
-};
 
 template <typename Real, int Width = 8>
 class Bvh {
@@ -112,11 +86,8 @@ public:
     // box: a small scene's tiles mostly reach its leaf or two and miss). Rays from one
     // origin (eye rays) always go as a bundle. Rays from different origins (a tile's
     // mirrored rays) widen as they go, and go as a bundle only where the scene has no more
-    // ellipsoids than the bundle has rays: it then tries each at most once for them all.
-    // Measured (one thread, CPU time, alternate runs, medians of 7-9): the heavy scene and
-    // the mirror room 27 % and 43 % faster; bundling them in larger scenes until they had
-    // met an ellipsoid a ray made sphereflake 3 4 % slower, and 18 % where it gave up at the
-    // first ellipsoid (the descent of a wide bundle costs most before it reaches a leaf).
+    // ellipsoids than the bundle has rays: it then tries each at most once for them all
+    // (in larger scenes a wide bundle's descent costs more than it saves: docs/speed.md).
     template <int N>
     void closest(const V (&origins)[N], const V (&directions)[N], unsigned lanes, double min_t,
                  NearestHit<Real> (&hits)[N]) const {
@@ -295,23 +266,11 @@ private:
         Child child;
         C near;  // where the ray enters its box
     };
-    // Whether a ray from within the box [o_lo, o_hi] is within every guard distance
-    // (nearly every ray: the scene is far smaller than 1e6 of its smallest scale), so
-    // that no node needs its guards checked.
     bool guarded(const C (&o_lo)[3], const C (&o_hi)[3]) const {
-        C farthest = 0;
-        for (int a = 0; a < 3; ++a)
-            farthest =
-                std::max({farthest, std::abs(bounds_.lo[a] - o_lo[a]), std::abs(bounds_.hi[a] - o_lo[a]),
-                          std::abs(bounds_.lo[a] - o_hi[a]), std::abs(bounds_.hi[a] - o_hi[a])});
-        return farthest <= guard_;
+        return within_guard(bounds_, guard_, o_lo, o_hi);
     }
 
-    // cleared with the scene's indices as positions in leaf order.
-    ClearedLanes in_leaf_order(ClearedLanes cleared) const {
-        for (int j = 0; j < cleared.count; ++j) cleared.ellipsoid[j] = position_[cleared.ellipsoid[j]];
-        return cleared;
-    }
+    ClearedLanes in_leaf_order(const ClearedLanes& cleared) const { return cleared.renumbered(position_); }
     // The binary tree's depth is below 32 + log2(N) (bvh_build.h), so that of the
     // wide tree too, and each level leaves at most Width - 1 entries on the stack.
     static constexpr int kStack = 96 * (Width - 1) + 1;
@@ -323,39 +282,6 @@ private:
     void traverse(const V& origin, const V& direction, C t1, Leaf leaf) const;
     template <bool kNearestFirst, bool kGuarded, typename Leaf>
     void traverse(const SlabRay<C>& ray, C t1, Leaf leaf) const;
-
-    // Which children of node the ray may meet within [0, t1] (bit k for child k), and where
-    // it enters each. The slabs are clipped at t = 0, not at the query's start, so that a
-    // box holding the origin is always met (the tangent roots above): there each slab's
-    // near end is <= 0 and its far end >= 0, signs that the rounding of (plane - o) * inv
-    // keeps exactly. kGuarded: the ray's origin is known to be within every guard distance.
-    template <bool kGuarded>
-    static unsigned meets(const Node& node, const SlabRay<C>& ray, C t1, C (&near)[Width]) {
-        C enter[Width], leave[Width], farthest[Width];
-        for (int k = 0; k < Width; ++k) enter[k] = 0, leave[k] = t1, farthest[k] = 0;
-        for (int a = 0; a < 3; ++a) {
-            const C* lo = node.box[0][a];
-            const C* hi = node.box[1][a];
-            const C lo_from = ray.lo_from[a], lo_inv = ray.lo_inv[a];
-            const C hi_from = ray.hi_from[a], hi_inv = ray.hi_inv[a];
-            RT_VECTOR_LOOP
-            for (int k = 0; k < Width; ++k) {
-                const C to_lo = lo[k] - lo_from, to_hi = hi[k] - hi_from;
-                clip_to_slab(to_lo * lo_inv, to_hi * hi_inv, enter[k], leave[k]);
-                if (kGuarded) continue;
-                const C reach = std::max(std::abs(to_lo), std::abs(to_hi));  // one ray only
-                farthest[k] = reach > farthest[k] ? reach : farthest[k];
-            }
-        }
-        unsigned mask = 0;
-        RT_VECTOR_LOOP
-        for (int k = 0; k < Width; ++k) {
-            const bool met = enter[k] <= leave[k] || (!kGuarded && farthest[k] > node.guard[k]);
-            mask |= met ? 1U << k : 0U;
-            near[k] = kGuarded || farthest[k] <= node.guard[k] ? enter[k] : C(0);
-        }
-        return mask & node.used;
-    }
 
     // occluded() past the hint: whether an ellipsoid other than the one tried already
     // (and those in skip, which cannot) blocks the ray; blocker becomes the one that does. In a leaf the ray
@@ -419,7 +345,7 @@ void Bvh<Real, Width>::traverse(const SlabRay<C>& ray, C t1, Leaf leaf) const {
         while (current.count == 0) {
             const Node& node = nodes_[current.first];
             C near[Width];
-            unsigned mask = meets<kGuarded>(node, ray, t1, near);
+            unsigned mask = children_met<kGuarded>(node, ray, t1, near);
             if (mask == 0) break;
             int k = lowest_bit(mask);
             mask &= mask - 1;

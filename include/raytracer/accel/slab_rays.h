@@ -85,6 +85,52 @@ RT_ALWAYS_INLINE bool meets_box(const SlabRay<C>& ray, const BuildBox<C>& box, C
     return enter <= leave;
 }
 
+// Whether a ray from within the box [o_lo, o_hi] is within every guard distance of the
+// ellipsoids in bounds, the least of which is guard (nearly every ray: the scene is far
+// smaller than 1e6 of its smallest scale), so that no node needs its guards checked.
+template <typename C>
+bool within_guard(const BuildBox<C>& bounds, C guard, const C (&o_lo)[3], const C (&o_hi)[3]) {
+    C farthest = 0;
+    for (int a = 0; a < 3; ++a)
+        farthest = std::max({farthest, std::abs(bounds.lo[a] - o_lo[a]), std::abs(bounds.hi[a] - o_lo[a]),
+                             std::abs(bounds.lo[a] - o_hi[a]), std::abs(bounds.hi[a] - o_hi[a])});
+    return farthest <= guard;
+}
+
+// Which children of node the ray may meet within [0, t1] (bit k for child k), and where
+// it enters each. The slabs are clipped at t = 0, not at the query's start, so that a
+// box holding the origin is always met (the tangent roots of bvh.h): there each slab's
+// near end is <= 0 and its far end >= 0, signs that the rounding of (plane - o) * inv
+// keeps exactly. kGuarded: the ray's origin is known to be within every guard distance.
+template <bool kGuarded, typename C, int Width>
+RT_ALWAYS_INLINE unsigned children_met(const WideNode<C, Width>& node, const SlabRay<C>& ray, C t1,
+                                       C (&near)[Width]) {
+    C enter[Width], leave[Width], farthest[Width];
+    for (int k = 0; k < Width; ++k) enter[k] = 0, leave[k] = t1, farthest[k] = 0;
+    for (int a = 0; a < 3; ++a) {
+        const C* lo = node.box[0][a];
+        const C* hi = node.box[1][a];
+        const C lo_from = ray.lo_from[a], lo_inv = ray.lo_inv[a];
+        const C hi_from = ray.hi_from[a], hi_inv = ray.hi_inv[a];
+        RT_VECTOR_LOOP
+        for (int k = 0; k < Width; ++k) {
+            const C to_lo = lo[k] - lo_from, to_hi = hi[k] - hi_from;
+            clip_to_slab(to_lo * lo_inv, to_hi * hi_inv, enter[k], leave[k]);
+            if (kGuarded) continue;
+            const C reach = std::max(std::abs(to_lo), std::abs(to_hi));  // one ray only
+            farthest[k] = reach > farthest[k] ? reach : farthest[k];
+        }
+    }
+    unsigned mask = 0;
+    RT_VECTOR_LOOP
+    for (int k = 0; k < Width; ++k) {
+        const bool met = enter[k] <= leave[k] || (!kGuarded && farthest[k] > node.guard[k]);
+        mask |= met ? 1U << k : 0U;
+        near[k] = kGuarded || farthest[k] <= node.guard[k] ? enter[k] : C(0);
+    }
+    return mask & node.used;
+}
+
 // An ellipsoid's box: grown by kBoxInflation of each scale, by 4 ulps of the centre
 // too, so that the box's own rounding stays inside the gap even for a small
 // ellipsoid far from the origin, and by the smallest subnormal, as a scale below 500
