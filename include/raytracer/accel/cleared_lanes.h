@@ -11,7 +11,7 @@ namespace rt {
 // point lies on, seen from outside (leaves_own_ellipsoid(), spec_rules.h), and shells
 // that hold both a point and the light (light_shells.h). The query skips them there.
 struct ClearedLanes {
-    static constexpr int kMax = 5;
+    static constexpr int kMax = 5;  // the ellipsoid a point lies on and LightShells::kMax shells
     std::uint32_t ellipsoid[kMax] = {};
     unsigned lanes[kMax] = {};
     int count = 0;

@@ -53,8 +53,8 @@ public:
 
     LightShells() = default;
 
-    // holding(light, f): calls f(i) for (at least) each ellipsoid i whose box holds the
-    // point light, e.g. Bvh::boxes_holding().
+    // geometry.boxes_holding(light, f) calls f(i) for (at least) each ellipsoid i whose
+    // box holds the point light (Bvh::boxes_holding()).
     template <typename Geometry>
     LightShells(const Geometry& geometry, const std::vector<Vec3<Real>>& lights) {
         if (std::numeric_limits<Real>::digits < std::numeric_limits<double>::digits) return;

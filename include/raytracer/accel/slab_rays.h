@@ -231,7 +231,8 @@ struct LaneRays {
     }
 };
 
-// Per axis, the least and the greatest of v[k] over the lanes. Kept in locals, not in
+// Per axis, the least and the greatest of v[k] over the lanes (a NaN is passed over by
+// std::min and std::max: a ray with a NaN has no visible root to lose). Kept in locals, not in
 // lo and hi, which may alias v: through memory each lane waited on the last one's
 // stores (a sixth of a course scene's time through the tree).
 template <typename C, typename Real, int N>

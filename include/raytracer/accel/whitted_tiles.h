@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "raytracer/accel/cleared_lanes.h"
 #include "raytracer/accel/light_shells.h"
 #include "raytracer/accel/slab_rays.h"
 #include "raytracer/bit_scan.h"
@@ -81,12 +82,12 @@ public:
         using C = AtLeastDouble<Real>;
         C y_lo = C(y[0]), y_hi = C(y[0]);
         for (int b = 1; b < rows; ++b) y_lo = std::min(y_lo, C(y[b])), y_hi = std::max(y_hi, C(y[b]));
+        const C near_z = C(tracer_.near_z());
         for (int block = 0; block < columns; block += kBlockColumns) {
             const int block_end = std::min(block + kBlockColumns, columns);
             C x_lo = C(column_x[block]), x_hi = x_lo;
             for (int c = block + 1; c < block_end; ++c)
                 x_lo = std::min(x_lo, C(column_x[c])), x_hi = std::max(x_hi, C(column_x[c]));
-            const C near_z = C(tracer_.near_z());
             if (!tracer_.geometry().may_meet(V{}, {x_lo, y_lo, near_z}, {x_hi, y_hi, near_z})) {
                 for (int b = 0; b < rows; ++b)
                     for (std::uint8_t* p = out[b] + std::ptrdiff_t{3} * block;
@@ -171,6 +172,7 @@ private:
         const L abs_c = abs(dot(mapped, mapped) - L(1));
         for (unsigned m = hits; m != 0; m &= m - 1)
             b.point[lowest_bit(m)] = lane(b.surface.point, lowest_bit(m));
+        static_assert(LightShells<Real>::kMax + 1 <= ClearedLanes::kMax, "room for the shells and the own");
         unsigned in_shell[LightShells<Real>::kMax];  // the lanes whose points each shell holds
         for (int s = 0; s < shells_.count(); ++s)
             in_shell[s] = hits & static_cast<unsigned>(shells_.holding(s, b.surface.point));

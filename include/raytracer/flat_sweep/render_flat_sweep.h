@@ -11,7 +11,8 @@
 
 namespace rt {
 
-// Up to this many ellipsoids the flat sweep is faster than the tree. Whole process, 2 threads, wall,
+// Up to this many ellipsoids the flat sweep renders: between where the tree overtakes it on random
+// scenes (below 300) and on mirrored sphereflakes (about 350). Whole process, 2 threads, wall,
 // interleaved, medians of 15 (2026-12-02): random scenes (scale_scenes.h) of 300 / 400 / 500 ellipsoids
 // 32.7 / 47.1 / 46.4 ms flat against 25.7 / 33.4 / 32.3 ms in the tree; the first 300 / 400 / 500 of
 // sphereflake 3 26.4 / 34.6 / 42.5 ms flat against 28.5 / 31.9 / 34.8 ms. Past a few thousand the flat
