@@ -12,6 +12,7 @@
 
 #include "check.h"
 #include "random_checks.h"
+#include "raytracer/accel/blocker_hints.h"
 #include "raytracer/accel/bvh.h"
 #include "raytracer/accel/light_shells.h"
 #include "raytracer/bit_scan.h"
@@ -78,6 +79,8 @@ int shadow_lanes_differing(const Crowd<Real>& c, unsigned seed, int bundles, lon
     int differing = 0;
     std::uint32_t hint = rt::kNoBlocker;  // carried from bundle to bundle, as in a render
     for (int b = 0; b < bundles; ++b) {
+        // At times any ellipsoid, as a hint of another pair's (BlockerHints) may be.
+        if (g() % 4 == 0) hint = static_cast<std::uint32_t>(g() % c.all.size());
         const auto own = static_cast<std::uint32_t>(g() % c.all.size());
         const rt::Ellipsoid<Real>& on = c.all[own];
         const double spread = g() % 2 ? 0.01 : 1.0;
@@ -267,6 +270,27 @@ TEST(bvh_shadow_bundles_match_brute_force) {
     }
     std::cout << "  own ellipsoid skipped for " << cleared << " lanes\n";
     CHECK(cleared > 10000);
+}
+
+// Each (ellipsoid, light) pair keeps its own hint while the pairs fit the table; past
+// kMaxSlots pairs share slots, and a hint read is one some pair stored, or none.
+TEST(blocker_hints_keep_a_hint_per_pair) {
+    const rt::BlockerHints hints(1000, 7);
+    CHECK_EQ(hints.load(999, 6), rt::kNoBlocker);
+    for (std::uint32_t e = 0; e < 1000; ++e)
+        for (std::size_t l = 0; l < 7; ++l) hints.store(e, l, e * 7 + static_cast<std::uint32_t>(l));
+    int wrong = 0;
+    for (std::uint32_t e = 0; e < 1000; ++e)
+        for (std::size_t l = 0; l < 7; ++l)
+            wrong += hints.load(e, l) != e * 7 + static_cast<std::uint32_t>(l);
+    CHECK_EQ(wrong, 0);
+    const rt::BlockerHints shared(rt::BlockerHints::kMaxSlots, 3);
+    shared.store(5, 1, 42);
+    CHECK_EQ(shared.load(5, 1), 42U);
+    CHECK_EQ(shared.load(5, 2), rt::kNoBlocker);
+    // Ellipsoid 5 + kMaxSlots shares ellipsoid 5's slots.
+    const std::uint32_t far = 5 + static_cast<std::uint32_t>(rt::BlockerHints::kMaxSlots);
+    CHECK_EQ(shared.load(far, 1), 42U);
 }
 
 TEST(bvh_closest_bundles_match_brute_force) {

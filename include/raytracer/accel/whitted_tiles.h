@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "raytracer/accel/blocker_hints.h"
 #include "raytracer/accel/cleared_lanes.h"
 #include "raytracer/accel/light_shells.h"
 #include "raytracer/accel/slab_rays.h"
@@ -32,7 +33,8 @@ public:
     using L = Lanes<Real, N>;  // a number per lane (lanes.h)
     static_assert(N >= 1 && N <= 32, "a tile's lanes are the bits of an unsigned");
 
-    explicit WhittedTiles(const Tracer& tracer) : tracer_(tracer) {
+    explicit WhittedTiles(const Tracer& tracer)
+        : tracer_(tracer), hints_(tracer.ellipsoid_count(), tracer.light_count()) {
         std::vector<V> lights(tracer.light_count());
         for (std::size_t li = 0; li < lights.size(); ++li) lights[li] = tracer.light_position(li);
         shells_ = LightShells<Real>(tracer.geometry(), lights);
@@ -57,16 +59,12 @@ public:
         L kr;
         Vec3<L> colour;
     };
-    // A thread's working memory: the tracer's, and the lanes of each bounce, made once
-    // (a tile's arrays are a few KB: set up per tile, they cost more than a missed tile's
-    // tracing).
+    // A thread's working memory: the lanes of each bounce, made once (a tile's arrays
+    // are a few KB: set up per tile, they cost more than a missed tile's tracing).
     struct Scratch {
-        typename Tracer::Scratch tracer;
         std::vector<Bounce> bounces;
     };
-    Scratch make_scratch() const {
-        return {tracer_.make_scratch(), std::vector<Bounce>(kMaxReflections + 1)};
-    }
+    Scratch make_scratch() const { return {std::vector<Bounce>(kMaxReflections + 1)}; }
 
     // The bytes of a band of `rows` <= kRows rows, the eye rays of row b through y[b] on
     // the near plane and its bytes from out[b], and `columns` columns, column c's through
@@ -189,10 +187,13 @@ private:
             for (unsigned left = facing; left != 0;) {
                 const unsigned bundle = close_lanes(b, left);  // on one ellipsoid, or one lane
                 left &= ~bundle;
+                const std::uint32_t on = b.hit[lowest_bit(bundle)].ellipsoid;
                 ClearedLanes cleared = in_shells;
-                cleared.add(b.hit[lowest_bit(bundle)].ellipsoid, own_clear & bundle);
-                blocked |= tracer_.geometry().occluded(b.point, tracer_.light_position(li), bundle,
-                                                       scratch.tracer.blockers[li], cleared);
+                cleared.add(on, own_clear & bundle);
+                std::uint32_t blocker = hints_.load(on, li);
+                blocked |= tracer_.geometry().occluded(b.point, tracer_.light_position(li), bundle, blocker,
+                                                       cleared);
+                hints_.store(on, li, blocker);
             }
             add_light(b.colour, b.surface, r, Vec3<L>::from(tracer_.light_intensity(li)), b.finish,
                       LaneBits(facing & ~blocked));
@@ -235,6 +236,7 @@ private:
 
     const Tracer& tracer_;
     LightShells<Real> shells_;    // the ellipsoids that hold a light
+    BlockerHints hints_;          // where each shadow query starts
     std::uint8_t background_[3];  // the bytes of BACK
 };
 

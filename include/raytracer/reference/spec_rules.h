@@ -84,8 +84,9 @@ bool specular_is_zero(const Ellipsoid<Real>& e) {
     return e.ks == 0 && e.shininess >= 0 && e.shininess <= Real(1e6);
 }
 
-// A geometry's hint for its any-hit query, per light and thread: which ellipsoid to try
-// first (the one that blocked this light last); kNoBlocker before any.
+// A geometry's hint for its any-hit query: which ellipsoid to try first (one that
+// blocked a shadow ray to this light before: whitted.h, blocker_hints.h); kNoBlocker
+// before any.
 inline constexpr std::uint32_t kNoBlocker = 0xFFFFFFFFU;
 
 // The answer of a closest-hit query: the ellipsoid a ray sees first, at t.

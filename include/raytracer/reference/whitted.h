@@ -104,6 +104,7 @@ public:
         bool no_lighting;  // Kd = Ks = 0: no light adds anything
     };
     const Material& material(std::uint32_t i) const { return materials_[i]; }
+    std::size_t ellipsoid_count() const { return materials_.size(); }
     std::size_t light_count() const { return lights_.size(); }
     const V& light_position(std::size_t li) const { return lights_[li].position; }
     const V& light_intensity(std::size_t li) const { return lights_[li].intensity; }
