@@ -11,8 +11,9 @@
 // machine falls on all of them alike. It never fails on timing: it reports.
 //
 // usage: benchmark --raytracer EXE --baseline EXE --floor EXE --course DIR --heavy FILE
-//                  [--make-scene EXE] [--povray RENDER_SH] [--quick] [--runs N] [--scale-only]
-//   (d), (e): scale_table.h.
+//                  [--make-scene EXE] [--povray RENDER_SH] [--embree EXE] [--quick] [--runs N]
+//                  [--scale-only]
+//   (d), (e): scale_table.h; --embree: tests/bench/embree_tracer.cpp's program, timed in (d).
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -77,9 +78,10 @@ Variant make_variant(const fs::path& dir, const fs::path& scene, int columns, in
 }
 
 int usage() {
-    std::fprintf(stderr,
-                 "usage: benchmark --raytracer EXE --baseline EXE --floor EXE --course DIR --heavy FILE "
-                 "[--make-scene EXE] [--povray RENDER_SH] [--quick] [--runs N] [--scale-only]\n");
+    std::fprintf(
+        stderr,
+        "usage: benchmark --raytracer EXE --baseline EXE --floor EXE --course DIR --heavy FILE "
+        "[--make-scene EXE] [--povray RENDER_SH] [--embree EXE] [--quick] [--runs N] [--scale-only]\n");
     return 2;
 }
 
@@ -237,6 +239,7 @@ int main(int argc, char** argv) {
     std::sort(b.course.begin(), b.course.end());
     const fs::path povray = opt.count("povray") ? fs::absolute(opt["povray"]) : fs::path();
     const fs::path make_scene = opt.count("make-scene") ? fs::absolute(opt["make-scene"]) : fs::path();
+    const fs::path embree = opt.count("embree") ? fs::absolute(opt["embree"]) : fs::path();
 
     b.dir = fs::temp_directory_path() /
             ("raytracer-bench-" + std::to_string(Clock::now().time_since_epoch().count()));
@@ -254,7 +257,7 @@ int main(int argc, char** argv) {
         large_table(b);
     }
     if (!make_scene.empty())
-        scale_table(b.raytracer, make_scene, povray, b.quick, b.failed);
+        scale_table(b.raytracer, make_scene, povray, embree, b.quick, b.failed);
     else
         std::printf("\n(d), (e): not run (no --make-scene)\n");
 

@@ -8,6 +8,8 @@
 #include <vector>
 
 #include "bench_process.h"
+#include "raytracer/image.h"
+#include "raytracer/ppm.h"
 
 namespace fs = std::filesystem;
 
@@ -16,7 +18,7 @@ namespace {
 struct ScaleScene {
     std::string name, kind;  // kind and size as make_scene takes them
     int size;
-    double embree_ms;  // issue 14's measurement of a renderer on Embree 3 (2 threads), for reference
+    double embree_ms;  // issue 14's measurement of a renderer on Embree 3 (2 threads), where not run
 };
 
 // Ellipsoids in a scene of make_scene's: a flake of level L has 1 + 9 + ... + 9^L
@@ -48,10 +50,22 @@ bool have_povray(const fs::path& script) {
     return bench::run({"/bin/sh", "-c", "command -v povray"}) >= 0;
 }
 
+// Whether two P6 files hold the same pixels; what differs, for the table's note.
+std::string image_difference(const std::string& a, const std::string& b) {
+    rt::Image x, y;
+    std::string error;
+    if (!rt::read_ppm(a, x, error) || !rt::read_ppm(b, y, error)) return "cannot compare: " + error;
+    const rt::ImageDiff d = rt::compare_images(x, y);
+    if (!d.same_size) return "sizes differ";
+    if (d.differing_pixels == 0) return "";
+    return std::to_string(d.differing_pixels) + " pixels differ, by up to " +
+           std::to_string(d.largest_difference) + " levels";
+}
+
 }  // namespace
 
-void scale_table(const fs::path& raytracer, const fs::path& make_scene, const fs::path& povray, bool quick,
-                 bool& failed) {
+void scale_table(const fs::path& raytracer, const fs::path& make_scene, const fs::path& povray,
+                 const fs::path& embree, bool quick, bool& failed) {
     auto timed = [&](const std::vector<std::string>& argv) {
         const bench::Run r = bench::run_measured(argv);
         if (r.seconds < 0) {
@@ -66,18 +80,33 @@ void scale_table(const fs::path& raytracer, const fs::path& make_scene, const fs
         {"random10k", "random", 10000, 120}, {"random100k", "random", 100000, 377}};
     const bool pov = !quick && have_povray(povray);
     const int runs = quick ? 1 : 5, pov_runs = 3;
+    // embree_tracer, where given and it runs (tried on the first scene at 1x1): timed as raytracer.exe.
+    bool embree_runs = !embree.empty();
+    if (embree_runs) {
+        const std::string probe = write_scene(make_scene, scenes.front(), 1, 1, failed);
+        embree_runs = bench::run({embree.string(), probe, scenes.front().name + "-embree.ppm"}) >= 0;
+        if (!embree_runs) std::printf("\n(embree_tracer does not run: %s)\n", embree.string().c_str());
+    }
+    int embree_same = 0;
+    std::string embree_notes;
     std::printf(
         "\n(d) scale scenes at 400x400, whole process, all cores (target: >= 20x POV-Ray 3.7 on 2 threads, "
         "and no slower than Embree 3)\n");
-    std::printf("  %-12s %11s %8s %8s %8s %9s %12s %7s %10s\n", "scene", "ellipsoids", "min", "median", "max",
-                "Mrays/s", "POV-Ray", "ratio", "Embree 3*");
+    std::printf("  %-12s %11s %8s %8s %8s %9s %12s %7s %10s%s\n", "scene", "ellipsoids", "min", "median",
+                "max", "Mrays/s", "POV-Ray", "ratio", embree_runs ? "Embree 3" : "Embree 3*",
+                embree_runs ? "   ratio" : "");
     double random_1k = 0, random_100k = 0;
     for (const ScaleScene& s : scenes) {
         const std::string file = write_scene(make_scene, s, 400, 400, failed);
-        bench::Stats ours, theirs;
+        bench::Stats ours, theirs, embree_stats;
         for (int r = 0; r < (pov ? pov_runs : 0); ++r)
             theirs.samples.push_back(timed({povray.string(), file, s.name + "-pov.ppm", "+WT2"}).seconds);
-        for (int r = 0; r < runs; ++r) ours.samples.push_back(timed({raytracer.string(), file}).seconds);
+        const std::vector<std::string> embree_run{embree.string(), file, s.name + "-embree.ppm"};
+        // Alternating, so that load on the machine falls on both alike.
+        for (int r = 0; r < runs; ++r) {
+            ours.samples.push_back(timed({raytracer.string(), file}).seconds);
+            if (embree_runs) embree_stats.samples.push_back(timed(embree_run).seconds);
+        }
         const double median = ours.median();
         std::printf("  %-12s %11ld %8.1f %8.1f %8.1f %9.2f", s.name.c_str(), ellipsoids(s), ours.min() * 1e3,
                     median * 1e3, ours.max() * 1e3, 400.0 * 400.0 / median / 1e6);
@@ -85,12 +114,28 @@ void scale_table(const fs::path& raytracer, const fs::path& make_scene, const fs
             std::printf(" %9.1f ms %6.1fx", theirs.median() * 1e3, theirs.median() / median);
         else
             std::printf(" %12s %7s", "-", "-");
-        std::printf(" %7.0f ms\n", s.embree_ms);
+        if (embree_runs) {
+            std::printf(" %7.1f ms %6.2fx\n", embree_stats.median() * 1e3, embree_stats.median() / median);
+            const std::string difference = image_difference(s.name + ".ppm", s.name + "-embree.ppm");
+            if (difference.empty())
+                ++embree_same;
+            else
+                embree_notes += "  " + s.name + ": " + difference + "\n";
+        } else {
+            std::printf(" %7.0f ms\n", s.embree_ms);
+        }
         if (s.name == "random1k") random_1k = median;
         if (s.name == "random100k") random_100k = median;
     }
     if (!pov) std::printf("  POV-Ray: %s\n", quick ? "not run in the quick table" : "not on this machine");
-    std::printf("  * issue 14's measurement on this machine kind, not of this run\n");
+    if (embree_runs) {
+        std::printf(
+            "  Embree 3: embree_tracer (reference tracer on Embree's BVH), %d runs alternating with ours;\n"
+            "  ratio: its median / ours (> 1: ours faster); images identical to ours on %d of %zu scenes\n%s",
+            runs, embree_same, scenes.size(), embree_notes.c_str());
+    } else {
+        std::printf("  * issue 14's measurement on this machine kind, not of this run\n");
+    }
     std::printf("  growth t(random100k) / t(random1k): %.1f (target <= 4)\n", random_100k / random_1k);
 
     std::printf("\n(e) random100k: read and prepared (RES 1 1), and rendered at 400x400 on 64 threads\n");
@@ -109,7 +154,7 @@ void scale_table(const fs::path& raytracer, const fs::path& make_scene, const fs
                 wide.peak_bytes / 1048576);
     for (const ScaleScene& s : scenes) {
         std::error_code ignored;
-        for (const char* end : {".txt", ".ppm", "-pov.ppm", "-small.txt", "-small.ppm"})
+        for (const char* end : {".txt", ".ppm", "-pov.ppm", "-embree.ppm", "-small.txt", "-small.ppm"})
             fs::remove(s.name + end, ignored);
     }
 }

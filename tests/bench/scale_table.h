@@ -1,7 +1,8 @@
 // The benchmark's tables for scenes far beyond the course's size (issue 14):
 //   (d) sphereflakes of levels 3-5 and 1k, 10k and 100k random ellipsoids at 400x400,
 //       whole process on all cores: wall time, Mrays/s and, where POV-Ray is on the
-//       machine, its time on the same scene (2 threads) and the ratio; the growth
+//       machine, its time on the same scene (2 threads) and the ratio; Embree 3's time (a
+//       renderer on it, measured in this run where given, else issue 14's figure); the growth
 //       t(random 100k) / t(random 1k);
 //   (e) random 100k read and prepared (RES 1 1): time and peak memory; rendered on 64
 //       threads: peak memory.
@@ -11,6 +12,9 @@
 #include <filesystem>
 
 // make_scene: tests/bench/make_scene.cpp's program. povray: ../shared/tools/povray/render.sh,
-// or empty; used only where `povray` runs.
+// or empty; used only where `povray` runs. embree: tests/bench/embree_tracer.cpp's program, or
+// empty; where it runs, (d) times it as raytracer.exe (same runs, alternating, whole process)
+// in place of issue 14's figures.
 void scale_table(const std::filesystem::path& raytracer, const std::filesystem::path& make_scene,
-                 const std::filesystem::path& povray, bool quick, bool& failed);
+                 const std::filesystem::path& povray, const std::filesystem::path& embree, bool quick,
+                 bool& failed);
