@@ -123,18 +123,19 @@ int shadow_lanes_differing(const Crowd<Real>& c, unsigned seed, int bundles, lon
 }
 
 // Bundles of rays from one origin (the camera, a surface point, anywhere), or from a
-// patch of a surface (a tile's mirrored rays: a bundle where the scene has at most as
-// many ellipsoids as the bundle has lanes, else ray by ray), in a narrow or wide cone, some with a
-// direction component of +0 or -0, against each lane's BruteForce::closest().
+// patch of a surface (a tile's mirrored rays: a bundle where their directions are
+// narrow() or the scene has at most as many ellipsoids as the bundle has lanes, else ray
+// by ray), in a narrow or wide cone, some with a direction component of +0 or -0,
+// against each lane's BruteForce::closest(). mirrored: only narrow bundles from patches.
 template <typename Real>
-int closest_lanes_differing(const Crowd<Real>& c, unsigned seed, int bundles) {
+int closest_lanes_differing(const Crowd<Real>& c, unsigned seed, int bundles, bool mirrored = false) {
     using V = rt::Vec3<Real>;
     const rt::BruteForce<Real> plain(c.all);
     const rt::Bvh<Real> tree(c.all);
     std::mt19937 g(seed);
     int differing = 0;
     for (int b = 0; b < bundles; ++b) {
-        const unsigned kind = g() % 4;
+        const unsigned kind = mirrored ? 3 : g() % 4;
         const rt::Ellipsoid<Real>& from = c.all[g() % c.all.size()];
         const V u0{Real(uniform(g, -1, 1)), Real(1), Real(0.5)};
         const V origin = kind == 0 ? V{}
@@ -142,7 +143,7 @@ int closest_lanes_differing(const Crowd<Real>& c, unsigned seed, int bundles) {
                              ? on_surface(from, u0)
                              : V{Real(uniform(g, -6, 6)), Real(uniform(g, -6, 6)), Real(uniform(g, -6, 6))};
         const V aim = c.all[g() % c.all.size()].centre - origin;
-        const double spread = g() % 2 ? 0.02 : 0.5;
+        const double spread = mirrored ? 0.02 : g() % 2 ? 0.02 : 0.5;
         V origins[kLanes], directions[kLanes];
         const double patch = g() % 2 ? 0.01 : 0.5;
         for (int k = 0; k < kLanes; ++k) {
@@ -299,6 +300,16 @@ TEST(bvh_closest_bundles_match_brute_force) {
         CHECK_EQ(closest_lanes_differing(crowd<float>(seed, n), seed, 400), 0);
         CHECK_EQ(closest_lanes_differing(crowd<double>(seed, n), seed, 400), 0);
         CHECK_EQ(closest_lanes_differing(crowd<long double>(seed, n), seed, 200), 0);
+    }
+}
+
+// Rays from different origins in narrow cones, which go as a bundle in any scene.
+TEST(bvh_closest_narrow_bundles_of_mirrored_rays_match_brute_force) {
+    for (unsigned seed = 1; seed <= 8; ++seed) {
+        const int n = 70 + static_cast<int>(seed) * 40;
+        CHECK_EQ(closest_lanes_differing(crowd<float>(seed, n), seed, 300, true), 0);
+        CHECK_EQ(closest_lanes_differing(crowd<double>(seed, n), seed, 400, true), 0);
+        CHECK_EQ(closest_lanes_differing(crowd<long double>(seed, n), seed, 200, true), 0);
     }
 }
 

@@ -85,9 +85,10 @@ public:
     // box, then each lane's exactly (the lanes are set up where the bundle first meets a
     // box: a small scene's tiles mostly reach its leaf or two and miss). Rays from one
     // origin (eye rays) always go as a bundle. Rays from different origins (a tile's
-    // mirrored rays) widen as they go, and go as a bundle only where the scene has no more
-    // ellipsoids than the bundle has rays: it then tries each at most once for them all
-    // (in larger scenes a wide bundle's descent costs more than it saves: docs/speed.md).
+    // mirrored rays) widen as they go, and go as a bundle where their directions are
+    // narrow() (off a floor or a large sphere), or where the scene has no more
+    // ellipsoids than the bundle has rays, so that it tries each at most once for them
+    // all; otherwise a wide bundle's descent costs more than it saves (docs/speed.md).
     template <int N>
     void closest(const V (&origins)[N], const V (&directions)[N], unsigned lanes, double min_t,
                  NearestHit<Real> (&hits)[N]) const {
@@ -100,7 +101,8 @@ public:
         bounds_of(directions, lanes, d_lo, d_hi);
         const bool one_origin = o_lo[0] == o_hi[0] && o_lo[1] == o_hi[1] && o_lo[2] == o_hi[2];
         const bool bundled = lanes != 0 && (lanes & (lanes - 1)) != 0 && !items_.empty() &&
-                             (one_origin || items_.size() <= static_cast<std::size_t>(bit_count(lanes))) &&
+                             (one_origin || narrow(d_lo, d_hi, lanes) ||
+                              items_.size() <= static_cast<std::size_t>(bit_count(lanes))) &&
                              make_slab_ray(o_lo, o_hi, d_lo, d_hi, ray) && guarded(o_lo, o_hi);
         if (!bundled) {
             for (unsigned m = lanes; m != 0; m &= m - 1)

@@ -231,6 +231,23 @@ struct LaneRays {
     }
 };
 
+// Whether the directions of a bundle of rays from different origins, per axis within
+// [d_lo, d_hi], are close enough for its descent to pay (Bvh::closest() for lanes): at
+// least kNarrowLanes rays whose directions differ by at most kNarrowSpread of their
+// largest component. Measured (callgrind, whole runs, one thread): sphereflakes 3 / 4 / 5
+// 7.3% / 5.6% / 2.3% fewer instructions, the random scenes within 0.1%; a spread of 0.3
+// was as good on sphereflakes 3 and 4 but 1.4% worse on 5, one of 1 worse everywhere.
+inline constexpr int kNarrowLanes = 4;
+inline constexpr double kNarrowSpread = 0.1;
+template <typename C>
+bool narrow(const C (&d_lo)[3], const C (&d_hi)[3], unsigned lanes) {
+    C spread = 0, largest = 0;
+    for (int a = 0; a < 3; ++a)
+        spread = std::max(spread, d_hi[a] - d_lo[a]),
+        largest = std::max({largest, std::abs(d_lo[a]), std::abs(d_hi[a])});
+    return bit_count(lanes) >= kNarrowLanes && spread <= C(kNarrowSpread) * largest;
+}
+
 // Per axis, the least and the greatest of v[k] over the lanes (a NaN is passed over by
 // std::min and std::max: a ray with a NaN has no visible root to lose). Kept in locals, not in
 // lo and hi, which may alias v: through memory each lane waited on the last one's
