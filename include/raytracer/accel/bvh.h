@@ -23,11 +23,9 @@
 // shadow ray towards a light 2000 radii away leaves the box before t = 0.001 and is still "blocked" at t ~
 // 0.5). From outside the box, |o'.d'| / |d'| >= sqrt(1.001^2 - 1) ~ 0.045 bounds that root's distance from
 // the tangent point to ~90 eps (1 + |o'|), deep inside the gap. The ellipsoids of a leaf are always tried
-// with the exact intersect(). Ties between equal roots go to the lower index (NearestHit::replaced_by()), as
-// in the loop over all.
+// with the exact intersect(). Ties between equal roots go to the lower index (NearestHit::replaced_by()).
 //
-// Memory: the tree and a copy of the ellipsoids in leaf order; a query uses a fixed stack, the same for any
-// scene.
+// Memory: the tree and the ellipsoids in leaf order; a query uses a fixed stack, the same for any scene.
 #pragma once
 
 #include <algorithm>
@@ -383,18 +381,20 @@ Bvh<Real, Width>::Bvh(std::vector<Ellipsoid<Real>> ellipsoids, unsigned threads)
     for (std::size_t i = 0; i < ellipsoids.size(); ++i)
         items[i] = build_item<C>(ellipsoids[i], static_cast<std::uint32_t>(i));
     const std::vector<BuildNode<C>> binary = BinaryTreeBuilder<C>().build(items, threads);
-    index_.reserve(items.size());
-    position_.resize(items.size());
-    for (const BuildItem<C>& item : items) {
-        position_[item.index] = static_cast<std::uint32_t>(index_.size());
-        index_.push_back(item.index);
-    }
+    index_.resize(items.size()), position_.resize(items.size());
+    for (std::uint32_t k = 0; k < items.size(); ++k)
+        index_[k] = items[k].index, position_[items[k].index] = k;
     std::vector<BuildItem<C>>().swap(items);  // not needed past this: a lower peak
-    permute_in_place(ellipsoids, index_);     // into leaf order, without a second copy
-    items_ = std::move(ellipsoids);
     if (binary.empty()) return;
     bounds_ = binary[0].box, guard_ = binary[0].guard;
-    root_ = collapse<Width>(binary, nodes_);
+    // The ellipsoids into leaf order, in place, beside the collapse (sphereflake 5: 2.8 ms each).
+    auto permute = [&] { permute_in_place(ellipsoids, index_); };
+    auto collapse_tree = [&] { root_ = collapse<Width>(binary, nodes_); };
+    if (threads > 1 && ellipsoids.size() >= BinaryTreeBuilder<C>::kItemsPerThread)
+        run_beside(permute, collapse_tree);
+    else
+        permute(), collapse_tree();
+    items_ = std::move(ellipsoids);
 }
 
 }  // namespace rt

@@ -49,6 +49,28 @@ struct BuildNode {
     std::uint32_t count = 0;  // a leaf's items; 0 for an inner node, whose children are first, first + 1
 };
 
+// Runs other() on a new thread while here() runs on this one, and returns when both
+// are done; an exception of either (out of memory) is rethrown here after both.
+template <typename Other, typename Here>
+void run_beside(Other other, Here here) {
+    std::exception_ptr failure;
+    std::thread thread([&] {
+        try {
+            other();
+        } catch (...) {
+            failure = std::current_exception();
+        }
+    });
+    try {
+        here();
+    } catch (...) {
+        thread.join();
+        throw;
+    }
+    thread.join();
+    if (failure) std::rethrow_exception(failure);
+}
+
 template <typename C>
 class BinaryTreeBuilder {
 public:
@@ -130,22 +152,8 @@ private:
         BinaryTreeBuilder right;
         right.nodes_.reserve(2 * (last - middle));
         right.nodes_.emplace_back();
-        std::exception_ptr failure;  // out of memory on the other thread, rethrown here
-        std::thread other([&] {
-            try {
-                right.grow(items, 0, middle, last, depth);
-            } catch (...) {
-                failure = std::current_exception();
-            }
-        });
-        try {
-            grow(items, children, first, middle, depth);
-        } catch (...) {
-            other.join();
-            throw;
-        }
-        other.join();
-        if (failure) std::rethrow_exception(failure);
+        run_beside([&] { right.grow(items, 0, middle, last, depth); },
+                   [&] { grow(items, children, first, middle, depth); });
         // Node j > 0 of the right half goes to base + j - 1; its root to the slot kept.
         const auto base = static_cast<std::uint32_t>(nodes_.size());
         for (std::size_t j = 0; j < right.nodes_.size(); ++j) {
