@@ -199,10 +199,12 @@ TEST(render_takes_the_tree_past_the_flat_sweeps_pairs) {
 }
 
 // Built on two threads (past BinaryTreeBuilder::kItemsPerThread a half: at the root of
-// random 50k, below it in sphereflake 5, whose root splits off the floor), the tree is
+// random 50k; below it where the root splits off a far cluster of 5,000), the tree is
 // the one built on one: as many nodes, the same leaf order, and every query answers alike.
 TEST(bvh_built_on_two_threads_is_the_same_tree) {
-    for (const rt::Scene& scene : {scale::random_ellipsoids(50000), scale::sphereflake(5)}) {
+    rt::Scene lopsided = scale::random_ellipsoids(55000);
+    for (std::size_t i = 50000; i < lopsided.spheres.size(); ++i) lopsided.spheres[i].centre.x += 1000;
+    for (const rt::Scene& scene : {scale::random_ellipsoids(50000), lopsided}) {
         const std::vector<rt::Ellipsoid<double>> all = rt::make_ellipsoids<double>(scene);
         const rt::Bvh<double> one(all, 1), two(all, 2);
         CHECK_EQ(one.node_count(), two.node_count());

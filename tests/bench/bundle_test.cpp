@@ -124,7 +124,7 @@ int shadow_lanes_differing(const Crowd<Real>& c, unsigned seed, int bundles, lon
 
 // Bundles of rays from one origin (the camera, a surface point, anywhere), or from a
 // patch of a surface (a tile's mirrored rays: a bundle where their directions are
-// narrow() or the scene has at most as many ellipsoids as the bundle has lanes, else ray
+// narrow_directions() or the scene has at most as many ellipsoids as the bundle has lanes, else ray
 // by ray), in a narrow or wide cone, some with a direction component of +0 or -0,
 // against each lane's BruteForce::closest(). mirrored: only narrow bundles from patches.
 template <typename Real>
@@ -153,7 +153,7 @@ int closest_lanes_differing(const Crowd<Real>& c, unsigned seed, int bundles, bo
             directions[k] = aim + V{Real(uniform(g, -spread, spread)), Real(uniform(g, -spread, spread)),
                                     Real(uniform(g, -spread, spread))} *
                                       Real(length(aim));
-            if (g() % 8 == 0) directions[k].x = k % 2 ? Real(0) : -Real(0);
+            if (!mirrored && g() % 8 == 0) directions[k].x = k % 2 ? Real(0) : -Real(0);
         }
         const unsigned lanes = b % 2 ? 0xFFFFU : static_cast<unsigned>(g() & 0xFFFF);  // half of them all 16
         for (const double min_t : {1.0, 0.001, 0.0001}) {

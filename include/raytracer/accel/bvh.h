@@ -77,16 +77,14 @@ public:
         return best;
     }
 
-    // closest() for each lane k in `lanes` of a bundle of rays, into hits[k]. The bundle
-    // goes down the tree as one slab ray, nearest first, until no lane can find a nearer
-    // root; in a leaf the bundle, then each lane's ray, is tried against each ellipsoid's
-    // box, then each lane's exactly (the lanes are set up where the bundle first meets a
-    // box: a small scene's tiles mostly reach its leaf or two and miss). Rays from one
-    // origin (eye rays) always go as a bundle. Rays from different origins (a tile's
-    // mirrored rays) widen as they go, and go as a bundle where their directions are
-    // narrow() (off a floor or a large sphere), or where the scene has no more
-    // ellipsoids than the bundle has rays, so that it tries each at most once for them
-    // all; otherwise a wide bundle's descent costs more than it saves (docs/speed.md).
+    // closest() for each lane k in `lanes` of a bundle of rays, into hits[k]. The bundle goes down the tree
+    // as one slab ray, nearest first, until no lane can find a nearer root; in a leaf the bundle, then each
+    // lane's ray, is tried against each ellipsoid's box, then each lane's exactly (the lanes are set up where
+    // the bundle first meets a box: a small scene's tiles mostly reach its leaf or two and miss). Rays from
+    // one origin (eye rays) always go as a bundle. Rays from different origins (a tile's mirrored rays) widen
+    // as they go, and go as a bundle where their directions are narrow_directions() (off a floor or a large
+    // sphere), or where the scene has no more ellipsoids than the bundle has rays, so that it tries each at
+    // most once for them all; otherwise a wide bundle's descent costs more than it saves (docs/speed.md).
     template <int N>
     void closest(const V (&origins)[N], const V (&directions)[N], unsigned lanes, double min_t,
                  NearestHit<Real> (&hits)[N]) const {
@@ -99,7 +97,7 @@ public:
         bounds_of(directions, lanes, d_lo, d_hi);
         const bool one_origin = o_lo[0] == o_hi[0] && o_lo[1] == o_hi[1] && o_lo[2] == o_hi[2];
         const bool bundled = lanes != 0 && (lanes & (lanes - 1)) != 0 && !items_.empty() &&
-                             (one_origin || narrow(d_lo, d_hi, lanes) ||
+                             (one_origin || narrow_directions(d_lo, d_hi, lanes) ||
                               items_.size() <= static_cast<std::size_t>(bit_count(lanes))) &&
                              make_slab_ray(o_lo, o_hi, d_lo, d_hi, ray) && guarded(o_lo, o_hi);
         if (!bundled) {
@@ -152,8 +150,9 @@ public:
         return met;
     }
 
-    // As BruteForce::occluded(): whether some ellipsoid blocks the shadow ray, trying
-    // first the one that blocked this light last (blocker: a position in leaf order).
+    // As BruteForce::occluded(): whether some ellipsoid blocks the shadow ray, trying first
+    // the hint `blocker` (a position in leaf order, any value: blocker_hints.h), which
+    // becomes the one found.
     // The ellipsoids in cleared (bit 0) are not tried: the caller knows that they cannot
     // block.
     bool occluded(const V& point, const V& to_light, std::uint32_t& blocker,
@@ -203,7 +202,7 @@ public:
             return blocked;
         }
         // In a leaf, each lane's own ray is tried against each ellipsoid's box first; the
-        // hint (the ellipsoid that blocked this light last) for all lanes at once first.
+        // hint for all lanes at once first.
         LaneRays<Real, N> rays;  // NOLINT(cppcoreguidelines-pro-type-member-init): set() here
         rays.set(points, to_light, lanes, 1);
         const std::uint32_t tried = blocker;

@@ -10,11 +10,11 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
-#include <exception>
 #include <limits>
-#include <thread>
 #include <utility>
 #include <vector>
+
+#include "raytracer/accel/run_beside.h"
 
 namespace rt {
 
@@ -49,28 +49,6 @@ struct BuildNode {
     std::uint32_t count = 0;  // a leaf's items; 0 for an inner node, whose children are first, first + 1
 };
 
-// Runs other() on a new thread while here() runs on this one, and returns when both
-// are done; an exception of either (out of memory) is rethrown here after both.
-template <typename Other, typename Here>
-void run_beside(Other other, Here here) {
-    std::exception_ptr failure;
-    std::thread thread([&] {
-        try {
-            other();
-        } catch (...) {
-            failure = std::current_exception();
-        }
-    });
-    try {
-        here();
-    } catch (...) {
-        thread.join();
-        throw;
-    }
-    thread.join();
-    if (failure) std::rethrow_exception(failure);
-}
-
 template <typename C>
 class BinaryTreeBuilder {
 public:
@@ -87,9 +65,8 @@ public:
     // Where threads > 1, the halves of the first node (in build order) whose halves are
     // large enough to pay for a thread (about 0.1 ms to start) and the smaller at least
     // 1 / kBalance of the node are built on two threads: the same tree, as each half is
-    // built alone either way, in the same order. Not only at the root: a sphereflake's
-    // root splits off its floor (binary tree of sphereflake 5 on 2 threads, medians of 9:
-    // 20.6 ms at the root only, 15.7 ms so; random 100k the same, 29 ms).
+    // built alone either way, in the same order. That is the root in the scale scenes,
+    // and a node below it where the root splits off a few far or huge ellipsoids.
     static constexpr std::size_t kItemsPerThread = 20000, kBalance = 3;
 
     // Reorders items into leaf order; nodes[0] is the root.

@@ -240,7 +240,7 @@ struct LaneRays {
 inline constexpr int kNarrowLanes = 4;
 inline constexpr double kNarrowSpread = 0.1;
 template <typename C>
-bool narrow(const C (&d_lo)[3], const C (&d_hi)[3], unsigned lanes) {
+bool narrow_directions(const C (&d_lo)[3], const C (&d_hi)[3], unsigned lanes) {
     C spread = 0, largest = 0;
     for (int a = 0; a < 3; ++a)
         spread = std::max(spread, d_hi[a] - d_lo[a]),
