@@ -150,11 +150,9 @@ public:
         return met;
     }
 
-    // As BruteForce::occluded(): whether some ellipsoid blocks the shadow ray, trying first
-    // the hint `blocker` (a position in leaf order, any value: blocker_hints.h), which
-    // becomes the one found.
-    // The ellipsoids in cleared (bit 0) are not tried: the caller knows that they cannot
-    // block.
+    // As BruteForce::occluded(): whether some ellipsoid blocks the shadow ray, trying first the hint
+    // `blocker` (a position in leaf order, any value: blocker_hints.h), which becomes the one found. The
+    // ellipsoids in cleared (bit 0) are not tried: the caller knows that they cannot block.
     bool occluded(const V& point, const V& to_light, std::uint32_t& blocker,
                   const ClearedLanes& cleared = {}) const {
         const ClearedLanes skip = in_leaf_order(cleared);
@@ -164,16 +162,14 @@ public:
         return blocked_past(point, to_light, blocker, skip, blocker);
     }
 
-    // occluded() for each lane k in `lanes` (bit k) of a bundle of shadow rays from
-    // points[k] to the light at `light` (to_light = light - points[k], as the shading
-    // computes it): the lanes that some ellipsoid blocks. The bundle goes down the tree
-    // as one slab ray and its lanes are tried one by one in the leaves it reaches: one
-    // descent instead of one a ray, where the points lie close (a tile's points on one
-    // ellipsoid). The ellipsoids in cleared are not tried for their lanes. The bundle's
-    // edges converge on the light: point + t (light - point) is
-    // (1 - t) point + t light, so for 0 <= t <= 1 each coordinate lies between
-    // o_lo + t (light - o_lo) and o_hi + t (light - o_hi), widened by the rounding of
-    // to_light and of those differences (a few ulps of |light| + |point|).
+    // occluded() for each lane k in `lanes` (bit k) of a bundle of shadow rays from points[k] to the light
+    // at `light` (to_light = light - points[k], as the shading computes it): the lanes that some ellipsoid
+    // blocks. The bundle goes down the tree as one slab ray and its lanes are tried one by one in the leaves
+    // it reaches: one descent instead of one a ray, where the points lie close (a tile's points on one
+    // ellipsoid). The ellipsoids in cleared are not tried for their lanes. The bundle's edges converge on
+    // the light: point + t (light - point) is (1 - t) point + t light, so for 0 <= t <= 1 each coordinate
+    // lies between o_lo + t (light - o_lo) and o_hi + t (light - o_hi), widened by the rounding of to_light
+    // and of those differences (a few ulps of |light| + |point|).
     template <int N>
     unsigned occluded(const V (&points)[N], const V& light, unsigned lanes, std::uint32_t& blocker,
                       const ClearedLanes& cleared = {}) const {
@@ -201,17 +197,20 @@ public:
                     blocked |= 1U << lowest_bit(m);
             return blocked;
         }
-        // In a leaf, each lane's own ray is tried against each ellipsoid's box first; the
+        // An ellipsoid's box is tried against the bundle, then against each lane's own ray, whose set-up
+        // waits for the first box the bundle meets (the heavy scene through the tree: 6% less time); the
         // hint for all lanes at once first.
-        LaneRays<Real, N> rays;  // NOLINT(cppcoreguidelines-pro-type-member-init): set() here
-        rays.set(points, to_light, lanes, 1);
+        LaneRays<Real, N> rays;  // NOLINT(cppcoreguidelines-pro-type-member-init): set() before use
+        bool rays_set = false;
         const std::uint32_t tried = blocker;
         const ClearedLanes skip = in_leaf_order(cleared);
         auto try_ellipsoid = [&](std::uint32_t i, unsigned open) {
             open &= ~skip.of(i);
+            const BuildBox<C> box = inflated_box<C>(items_[i]);
+            if (open == 0 || !meets_box(ray, box, C(1))) return;
+            if (!rays_set) rays.set(points, to_light, lanes, 1), rays_set = true;
             Real hit[N], near[N], far[N];
-            for (unsigned m = rays.roots(items_[i], inflated_box<C>(items_[i]), open, hit, near, far); m != 0;
-                 m &= m - 1) {
+            for (unsigned m = rays.roots(items_[i], box, open, hit, near, far); m != 0; m &= m - 1) {
                 const int k = lowest_bit(m);
                 if (blocks_segment(Roots<Real>{hit[k] != 0, near[k], far[k]}))
                     blocked |= 1U << k, blocker = i;
