@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 #include "raytracer/accel/blocker_hints.h"
@@ -40,6 +41,7 @@ public:
         shells_ = LightShells<Real>(tracer.geometry(), lights);
         const V& back = tracer.background();
         background_[0] = to_byte(back.x), background_[1] = to_byte(back.y), background_[2] = to_byte(back.z);
+        for (int c = 0; c < kBlockColumns; ++c) std::memcpy(background_row_ + 3 * c, background_, 3);
     }
 
     // One bounce's lanes: the rays, what they hit, and their colours. The eye rays'
@@ -83,14 +85,14 @@ public:
         const C near_z = C(tracer_.near_z());
         for (int block = 0; block < columns; block += kBlockColumns) {
             const int block_end = std::min(block + kBlockColumns, columns);
-            C x_lo = C(column_x[block]), x_hi = x_lo;
-            for (int c = block + 1; c < block_end; ++c)
-                x_lo = std::min(x_lo, C(column_x[c])), x_hi = std::max(x_hi, C(column_x[c]));
+            // column_x is monotonic (each operation of Whitted::column_x() is): a block's
+            // range is that of its ends.
+            const C x_first = C(column_x[block]), x_last = C(column_x[block_end - 1]);
+            const C x_lo = std::min(x_first, x_last), x_hi = std::max(x_first, x_last);
             if (!tracer_.geometry().may_meet(V{}, {x_lo, y_lo, near_z}, {x_hi, y_hi, near_z})) {
                 for (int b = 0; b < rows; ++b)
-                    for (std::uint8_t* p = out[b] + std::ptrdiff_t{3} * block;
-                         p != out[b] + std::ptrdiff_t{3} * block_end; p += 3)
-                        p[0] = background_[0], p[1] = background_[1], p[2] = background_[2];
+                    std::memcpy(out[b] + std::ptrdiff_t{3} * block, background_row_,
+                                std::size_t{3} * static_cast<std::size_t>(block_end - block));
                 continue;
             }
             for (int c0 = block; c0 < block_end; c0 += kColumns) {
@@ -235,9 +237,10 @@ private:
     }
 
     const Tracer& tracer_;
-    LightShells<Real> shells_;    // the ellipsoids that hold a light
-    BlockerHints hints_;          // where each shadow query starts
-    std::uint8_t background_[3];  // the bytes of BACK
+    LightShells<Real> shells_;                        // the ellipsoids that hold a light
+    BlockerHints hints_;                              // where each shadow query starts
+    std::uint8_t background_[3];                      // the bytes of BACK
+    std::uint8_t background_row_[3 * kBlockColumns];  // and a block's row of them
 };
 
 }  // namespace rt
