@@ -20,6 +20,10 @@
 #include "raytracer/compiler.h"
 #include "raytracer/vec3.h"
 
+#if (defined(__GNUC__) || defined(__clang__)) && defined(__AVX__)
+#include <immintrin.h>
+#endif
+
 namespace rt {
 
 // The lanes' bits of an N-lane set, bit k for lane k, as a constant table: selects of
@@ -58,6 +62,20 @@ struct NativeVector {
     // NOLINTNEXTLINE(modernize-use-using): GCC takes a vector_size of a template's type only on a typedef
     typedef E type __attribute__((vector_size(32)));
 };
+// A comparison's mask (-1 or 0 in each lane) as bits, bit i for lane i: one instruction.
+template <typename Mask>
+RT_ALWAYS_INLINE unsigned bits_of(Mask m) {
+    if constexpr (sizeof(m[0]) == 8) return static_cast<unsigned>(_mm256_movemask_pd((__m256d)m));
+    return static_cast<unsigned>(_mm256_movemask_ps((__m256)m));
+}
+// The mask whose lane i is -1 where bit i of bits is set, else 0.
+template <typename Mask>
+RT_ALWAYS_INLINE Mask mask_of(unsigned bits) {
+    using E = std::remove_reference_t<decltype(Mask{}[0])>;
+    Mask lane_bit;
+    for (int i = 0; i < int(sizeof(Mask) / sizeof(E)); ++i) lane_bit[i] = E(1) << i;
+    return ((Mask{} + static_cast<E>(bits)) & lane_bit) != 0;
+}
 #else
 template <typename Real>
 inline constexpr bool kNativeLanes = false;
@@ -112,10 +130,8 @@ struct Lanes {
     RT_ALWAYS_INLINE static LaneBits where(const Lanes& a, const Lanes& b, Op op) {
         LaneBits set = 0;
         if constexpr (kNative) {
-            for (int j = 0; j < N / kPart; ++j) {
-                const auto m = op(a.v.part[j], b.v.part[j]);  // -1 where it holds, else 0
-                for (int i = 0; i < kPart; ++i) set |= m[i] != 0 ? kLaneBits<N>.bit[j * kPart + i] : 0;
-            }
+            for (int j = 0; j < N / kPart; ++j)
+                set |= LaneBits{detail::bits_of(op(a.v.part[j], b.v.part[j]))} << (j * kPart);
         } else {
             RT_VECTOR_LOOP
             for (int k = 0; k < N; ++k) set |= op(a.v.lane[k], b.v.lane[k]) ? kLaneBits<N>.bit[k] : 0;
@@ -186,11 +202,11 @@ struct Lanes {
     RT_ALWAYS_INLINE friend Lanes select(LaneBits where, const Lanes& a, const Lanes& b) {
         Lanes r;
         if constexpr (kNative) {
-            for (int j = 0; j < N / kPart; ++j) {
-                decltype(a.v.part[j] != a.v.part[j]) m;  // -1 in lane i where bit j kPart + i is set
-                for (int i = 0; i < kPart; ++i) m[i] = (where >> (j * kPart + i)) & 1U ? -1 : 0;
-                r.v.part[j] = m ? a.v.part[j] : b.v.part[j];
-            }
+            using Mask = decltype(a.v.part[0] != b.v.part[0]);
+            for (int j = 0; j < N / kPart; ++j)
+                r.v.part[j] = detail::mask_of<Mask>(static_cast<unsigned>(where >> (j * kPart)))
+                                  ? a.v.part[j]
+                                  : b.v.part[j];
         } else {
             RT_VECTOR_LOOP
             for (int k = 0; k < N; ++k)
