@@ -51,11 +51,12 @@ RT_ALWAYS_INLINE bool make_slab_ray(const C (&o_lo)[3], const C (&o_hi)[3], cons
                                     const C (&d_hi)[3], SlabRay<C>& ray) {
     constexpr C kInf = std::numeric_limits<C>::infinity();
     for (int a = 0; a < 3; ++a) {
-        for (const C d : {d_lo[a], d_hi[a]})
-            if (d != 0 && !(std::abs(1 / d) <= std::numeric_limits<C>::max())) return false;
         // -0 as +0, so that a zero's sign follows the cases below.
         ray.lo_from[a] = o_hi[a], ray.lo_inv[a] = 1 / (d_hi[a] == 0 ? C(0) : d_hi[a]);
         ray.hi_from[a] = o_lo[a], ray.hi_inv[a] = 1 / (d_lo[a] == 0 ? C(0) : d_lo[a]);
+        if ((d_hi[a] != 0 && !(std::abs(ray.lo_inv[a]) <= std::numeric_limits<C>::max())) ||
+            (d_lo[a] != 0 && !(std::abs(ray.hi_inv[a]) <= std::numeric_limits<C>::max())))
+            return false;
         if (d_lo[a] < 0 && d_hi[a] >= 0) ray.hi_from[a] = -kInf, ray.hi_inv[a] = 1;  // q = +inf
         if (d_lo[a] >= 0 && d_hi[a] < 0) ray.lo_from[a] = kInf, ray.lo_inv[a] = 1;   // p = -inf
     }
@@ -182,27 +183,27 @@ struct LaneRays {
     unsigned unculled;             // lanes always met: a direction without a finite inverse
 
     // Lane k of lanes: origins[k] + t directions[k] for t in [0, end]; the other lanes
-    // zero (their answers are dropped).
+    // zero (their answers are dropped). The lanes' rays are gathered, then the inverses
+    // found for all lanes at once (vector divisions).
     void set(const V (&origins)[N], const V (&directions)[N], unsigned lanes, C end) {
-        unculled = 0;
         for (int k = 0; k < N; ++k) {
-            if ((lanes >> k & 1U) == 0) {
-                t1[k] = 0;
-                for (int a = 0; a < 3; ++a) from[a][k] = along[a][k] = 0, inv[a][k] = 0;
-                continue;
-            }
+            const bool in = (lanes >> k & 1U) != 0;
             const V& o = origins[k];
             const V& d = directions[k];
-            const C along_c[3] = {C(d.x), C(d.y), C(d.z)};
-            t1[k] = end;
-            from[0][k] = o.x, from[1][k] = o.y, from[2][k] = o.z;
-            along[0][k] = d.x, along[1][k] = d.y, along[2][k] = d.z;
-            for (int a = 0; a < 3; ++a) {
-                inv[a][k] = 1 / along_c[a];
-                if (along_c[a] != 0 && !(std::abs(inv[a][k]) <= std::numeric_limits<C>::max()))
-                    unculled |= 1U << k;
+            from[0][k] = in ? o.x : 0, from[1][k] = in ? o.y : 0, from[2][k] = in ? o.z : 0;
+            along[0][k] = in ? d.x : 0, along[1][k] = in ? d.y : 0, along[2][k] = in ? d.z : 0;
+            t1[k] = in ? end : 0;
+        }
+        unsigned unbounded = 0;  // an inverse of a non-zero direction that is not finite
+        for (int a = 0; a < 3; ++a) {
+            RT_VECTOR_LOOP
+            for (int k = 0; k < N; ++k) {
+                inv[a][k] = 1 / C(along[a][k]);
+                const bool finite = along[a][k] == 0 || std::abs(inv[a][k]) <= std::numeric_limits<C>::max();
+                unbounded |= finite ? 0U : 1U << k;
             }
         }
+        unculled = unbounded & lanes;
     }
     // Which of lanes may meet e's box (inflated_box()); where some do, every lane's
     // roots with e, in one vector loop (intersect()'s, bit for bit).
