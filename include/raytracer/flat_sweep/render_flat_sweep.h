@@ -12,12 +12,13 @@
 namespace rt {
 
 // Up to this many ellipsoids the flat sweep renders: between where the tree overtakes it on random
-// scenes (below 300) and on mirrored sphereflakes (about 350). Whole process, 2 threads, wall,
-// interleaved, medians of 15 (2026-12-02): random scenes (scale_scenes.h) of 300 / 400 / 500 ellipsoids
-// 32.7 / 47.1 / 46.4 ms flat against 25.7 / 33.4 / 32.3 ms in the tree; the first 300 / 400 / 500 of
-// sphereflake 3 26.4 / 34.6 / 42.5 ms flat against 28.5 / 31.9 / 34.8 ms. Past a few thousand the flat
-// sweep's tables stop at their limits and it is many times slower (random 4,000: 3.9 s).
-inline constexpr std::size_t kFlatSweepEllipsoids = 384;
+// scenes (about 100) and on mirrored sphereflakes (about 230). Whole process, 2 threads, wall,
+// interleaved, medians of 15-21 (2026-12-02 19:30 UTC): random scenes (scale_scenes.h) of 100 / 150 /
+// 200 / 256 / 300 ellipsoids 11.5 / 15.8 / 19.5 / 21.2 / 26.3 ms flat against 10.4 / 13.4 / 15.3 /
+// 14.7 / 17.6 ms in the tree; the first 150 / 200 / 256 / 300 of sphereflake 3 10.1 / 11.8 / 15.1 /
+// 20.1 ms flat against 11.0 / 12.2 / 13.6 / 17.0 ms. Past a few thousand the flat sweep's tables stop
+// at their limits and it is many times slower (random 4,000: 3.9 s).
+inline constexpr std::size_t kFlatSweepEllipsoids = 200;
 // and while ellipsoids x lights stay below this: the flat sweep keeps tables per
 // ellipsoid and light (about 100 bytes a pair), the tree nothing per pair.
 inline constexpr std::size_t kFlatSweepPairs = 65536;
