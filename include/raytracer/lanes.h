@@ -6,10 +6,11 @@
 // register; detail::NativeVector below), or a loop over the lanes that the compiler
 // vectorises; a lane's value is the scalar operation on that lane's operands, rounded as
 // a scalar one (IEEE operations, no fused multiply-adds: CMakeLists.txt). Native vectors
-// of 64 bytes (AVX-512) measured 15% slower on the tree's tiles than 32. A comparison
-// gives a mask, bit k for lane k; where code for one ray
-// branches, code over lanes selects (select(), any()), so a lane never gets a term its
-// scalar run would have skipped, and never an addition of zero in its place.
+// of 64 bytes (AVX-512) measured 15% slower on the tree's tiles than 32.
+//
+// A comparison gives a mask, bit k for lane k; where code for one ray branches, code
+// over lanes selects (select(), any()), so a lane never gets a term its scalar run
+// would have skipped, and never an addition of zero in its place.
 #pragma once
 
 #include <cmath>
