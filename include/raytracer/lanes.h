@@ -80,6 +80,10 @@ RT_ALWAYS_INLINE Mask mask_of(unsigned bits) {
 #else
 template <typename Real>
 inline constexpr bool kNativeLanes = false;
+template <typename Mask>
+unsigned bits_of(Mask m);  // named in Lanes' native branches, which are not instantiated here
+template <typename Mask>
+Mask mask_of(unsigned bits);
 #endif
 // A Lanes' numbers: an array, and where kNative the same bytes as native vectors.
 template <typename Real, int N, bool kNative>
