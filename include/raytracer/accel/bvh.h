@@ -61,20 +61,20 @@ public:
     // As BruteForce::closest(): the nearest visible root beyond min_t.
     NearestHit<Real> closest(const V& origin, const V& direction, double min_t) const {
         const Real beyond = visible_beyond(Real(min_t));
+        const OneRay ray = one_ray(origin, direction);
         NearestHit<Real> best;
-        traverse<true>(one_ray(origin, direction), std::numeric_limits<C>::infinity(),
-                       [&](Child leaf, C& t1) {
-                           for (std::uint32_t k = leaf.first; k < leaf.first + leaf.count; ++k) {
-                               Real t;
-                               bool inside;
-                               if (visible_root(intersect(items_[k], origin, direction), beyond, t, inside) &&
-                                   best.replaced_by(t, index_[k])) {
-                                   best = {t, index_[k], inside};
-                                   t1 = C(t);  // a box entered beyond it cannot hold a nearer root
-                               }
-                           }
-                           return false;
-                       });
+        traverse<true>(ray, std::numeric_limits<C>::infinity(), [&](Child leaf, C& t1) {
+            for (std::uint32_t k = leaf.first; k < leaf.first + leaf.count; ++k) {
+                Real t;
+                bool inside;
+                if (visible_root(intersect(items_[k], origin, direction), beyond, t, inside) &&
+                    best.replaced_by(t, index_[k])) {
+                    best = {t, index_[k], inside};
+                    t1 = C(t);  // a box entered beyond it cannot hold a nearer root
+                }
+            }
+            return false;
+        });
         return best;
     }
 
@@ -168,7 +168,7 @@ public:
         traverse<false>(ray, C(1), [&](Child leaf, C&) {
             for (std::uint32_t k = leaf.first; k < leaf.first + leaf.count && !blocked; ++k)
                 if (k != tried && (skip.of(k) & 1U) == 0 &&
-                    (!ray.culls || meets_box(ray.slab, inflated_box<C>(items_[k]), C(1))) &&
+                    (!ray.culls() || meets_box(ray.slab, inflated_box<C>(items_[k]), C(1))) &&
                     blocks_segment(items_[k], point, to_light))
                     blocker = k, blocked = true;
             return blocked;
@@ -288,18 +288,18 @@ private:
     static constexpr int kStack = 96 * (Width - 1) + 1;
 
     // One ray as the descent takes it: its slab ray, unless a direction component has no finite inverse
-    // (then every ellipsoid is visited), and whether its origin is within every guard distance (then boxes
-    // may cull it: culls).
+    // (then every ellipsoid is visited), and whether its origin is within every guard distance.
     struct OneRay {
         SlabRay<C> slab;
-        bool sloped, guarded, culls;
+        bool sloped, guarded;
+        bool culls() const { return sloped && guarded; }  // boxes may cull it
     };
     OneRay one_ray(const V& origin, const V& direction) const {
         const C o[3] = {C(origin.x), C(origin.y), C(origin.z)};
         const C d[3] = {C(direction.x), C(direction.y), C(direction.z)};
         OneRay ray{};
         ray.sloped = make_slab_ray(o, o, d, d, ray.slab);
-        ray.guarded = guarded(o, o), ray.culls = ray.sloped && ray.guarded;
+        ray.guarded = guarded(o, o);
         return ray;
     }
     // Visits the leaves whose boxes the ray may meet within [0, t1], nearest first

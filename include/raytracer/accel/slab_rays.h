@@ -182,9 +182,9 @@ struct LaneRays {
     C inv[3][N], t1[N];            // for the slab tests
     unsigned unculled;             // lanes always met: a direction without a finite inverse
 
-    // Lane k of lanes: origins[k] + t directions[k] for t in [0, end]; the other lanes
-    // zero (their answers are dropped). The lanes' rays are gathered, then the inverses
-    // found for all lanes at once (vector divisions).
+    // Lane k of lanes: origins[k] + t directions[k] for t in [0, end]; the other lanes'
+    // rays zero (their inverses infinite; their answers are dropped). The lanes' rays are
+    // gathered, then the inverses found for all lanes at once (vector divisions).
     void set(const V (&origins)[N], const V (&directions)[N], unsigned lanes, C end) {
         for (int k = 0; k < N; ++k) {
             const bool in = (lanes >> k & 1U) != 0;
