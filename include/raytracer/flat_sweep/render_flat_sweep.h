@@ -6,6 +6,7 @@
 
 #include <cstddef>
 
+#include "raytracer/lanes.h"
 #include "raytracer/row_sink.h"
 #include "raytracer/scene.h"
 
@@ -17,8 +18,10 @@ namespace rt {
 // 200 / 256 / 300 ellipsoids 11.5 / 15.8 / 19.5 / 21.2 / 26.3 ms flat against 10.4 / 13.4 / 15.3 /
 // 14.7 / 17.6 ms in the tree; the first 150 / 200 / 256 / 300 of sphereflake 3 10.1 / 11.8 / 15.1 /
 // 20.1 ms flat against 11.0 / 12.2 / 13.6 / 17.0 ms. Past a few thousand the flat sweep's tables stop
-// at their limits and it is many times slower (random 4,000: 3.9 s).
-inline constexpr std::size_t kFlatSweepEllipsoids = 200;
+// at their limits and it is many times slower (random 4,000: 3.9 s). Where the tiles' lanes are arrays
+// (no AVX: lanes.h) the tree is slower: 384 there (random 250 / 300 / 384, render alone: 32 / 39 / 43 ms
+// flat against 57 / 61 / 67 ms in the tree).
+inline constexpr std::size_t kFlatSweepEllipsoids = Lanes<double, 16>::kNative ? 200 : 384;
 // and while ellipsoids x lights stay below this: the flat sweep keeps tables per
 // ellipsoid and light (about 100 bytes a pair), the tree nothing per pair.
 inline constexpr std::size_t kFlatSweepPairs = 65536;
