@@ -134,7 +134,7 @@ TEST(lane_enclosures_answer_as_the_scalar_test) {
     std::vector<rt::Vec3<double>> lights(6);
     for (rt::Vec3<double>& l : lights) l = {uniform(g, -6, 6), uniform(g, -6, 6), uniform(g, -12, 2)};
     const rt::Enclosures<double> enclosures(ellipsoids, lights);
-    const std::uint64_t* lane = rt::HitPacket<double>::kLaneBit;
+    const std::uint64_t* lane = rt::kLaneBits<N>.bit;
     long long differing = 0, contained = 0;
     for (int round = 0; round < 20000; ++round) {
         const std::size_t i = g() % ellipsoids.size(), li = g() % lights.size();

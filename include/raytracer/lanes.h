@@ -15,6 +15,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <functional>
 #include <type_traits>
 
@@ -117,6 +118,12 @@ struct Lanes {
     }
     Real& operator[](int k) { return v.lane[k]; }
     const Real& operator[](int k) const { return v.lane[k]; }
+    const Real* data() const { return v.lane; }  // the N lanes in order, for code over arrays
+    static Lanes load(const Real* from) {        // and from N numbers in order
+        Lanes r;
+        std::memcpy(r.v.lane, from, sizeof r.v.lane);
+        return r;
+    }
 
     // Lane by lane: r[k] = op(a[k], b[k]) (op takes both lanes and native vectors).
     template <typename Op>

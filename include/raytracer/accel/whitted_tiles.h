@@ -167,9 +167,7 @@ private:
         b.colour = select(LaneBits(hits), ambient, miss);
         if (hits == 0) return hits;
         b.surface = surface_point(origin, direction, t, inside, centre, scale_squared);
-        // |c| of leaves_own_ellipsoid(), as mapped_origin() computes c.
-        const Vec3<L> mapped = (b.surface.point - centre) / scale;
-        const L abs_c = abs(dot(mapped, mapped) - L(1));
+        const L abs_c = own_abs_c(b.surface.point, centre, scale);
         for (unsigned m = hits; m != 0; m &= m - 1)
             b.point[lowest_bit(m)] = lane(b.surface.point, lowest_bit(m));
         static_assert(LightShells<Real>::kMax + 1 <= ClearedLanes::kMax, "room for the shells and the own");

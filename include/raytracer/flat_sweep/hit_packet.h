@@ -1,36 +1,28 @@
-// The shading arithmetic of up to kPacket ray hits on one ellipsoid, ray k in lane k of
-// every array: the point, its normal, and per light L - P, N.L, R.V, the specular power
-// and the colour sums (SPEC section 5), and the mirrored directions.
+// The shading of up to kPacket ray hits on one ellipsoid, ray k in lane k of every
+// array: shading.h's functions, the reference's own (whitted.h), run over the lanes a
+// vector register at a time (Lanes of one register: kChunk lanes), so each lane gets its
+// pixel's bits; the packet keeps the terms as arrays for the shadow tests
+// (packet_shading.h).
 //
-// WHY: the reference (shading.h, for one ray in whitted.h) is a chain of dependent
-// products, square roots and divisions with branches in between. Neighbouring pixels
-// mostly see the same ellipsoid, so here the same chain runs over the pixels as flat
-// loops over fixed-size arrays, which GCC and Clang turn into vector instructions (8
-// doubles per AVX-512 instruction). Each lane performs exactly shading.h's operations
-// in its order (named at each step), lanes do not mix, and vector instructions round as
-// scalar ones do (no fused multiply-adds: CMakeLists.txt), so each pixel gets the same
-// bits. Where the reference skips a term (light behind, in shadow, R.V <= 0), the lane
-// keeps its sum by a select; no zero is added.
+// WHY: neighbouring pixels mostly see the same ellipsoid, and all of the shading
+// arithmetic but the shadow rays is then the same chain of operations per pixel, run
+// with the pixels as the lanes of vector instructions. A register at a time keeps each
+// chain in registers: shading.h over Lanes of all 16 lanes at once (as the tree's tiles
+// run it) spills them, and measured 15-20% slower here (the course scenes and the heavy
+// scene, one thread).
 //
 // Shadow rays are Tracer::shadow_lanes()'s (or one at a time, Tracer::hit_colours()),
 // and what each mirrored ray hits is Tracer::nearest_hits()'s (packet_shading.h).
-//
-// shading.h over Lanes (lanes.h), as the tree's tiles run it, measured 20-30% slower
-// here on the heavy scene (one thread): each Lanes operation is a loop of its own,
-// stored and loaded, where these loops keep a chain in registers.
-//
-// The loops with selects or a variable trip count around them (the sums, the whole
-// power, R.V) are marked RT_VECTOR_LOOP: GCC unrolled them completely first and then
-// left them as 8 scalar lanes with a branch each (measured: heavy 100x100 139.2 ->
-// 112.9 M instructions once vectorised).
 #pragma once
 
-#include <cmath>
+#include <algorithm>
 #include <cstdint>
+#include <cstring>
 #include <type_traits>
 
-#include "raytracer/compiler.h"
 #include "raytracer/lanes.h"
+#include "raytracer/reference/ellipsoid.h"
+#include "raytracer/reference/shading.h"
 #include "raytracer/reference/spec_rules.h"
 #include "raytracer/vec3.h"
 
@@ -64,7 +56,7 @@ void packet_width(int count, Shade shade) {
         shade(std::integral_constant<int, kPacket>{});
 }
 
-// The terms of one light for the lanes of a HitPacket (HitPacket::light()).
+// The terms of one light for the lanes of a HitPacket (light_ray(): HitPacket::light()).
 template <typename Real, int Width = kPacket>
 struct LightLanes {
     static constexpr int N = Width;
@@ -80,210 +72,125 @@ struct LightLanes {
 template <typename Real, int Width = kPacket>
 struct HitPacket {
     static constexpr int N = Width;
-    using Lanes = LightLanes<Real, Width>;
+    // The lanes of one vector register, or all N where fewer.
+    static constexpr int kChunk = std::min(N, std::max(1, int(32 / sizeof(Real))));
+    static_assert(N % kChunk == 0, "whole registers");
+    using Q = Lanes<Real, kChunk>;
+    using Lights = LightLanes<Real, Width>;
     int count = 0;
     Real ox[N], oy[N], oz[N];        // the ray's origin
     Real dx[N], dy[N], dz[N], t[N];  // its direction and root
-    Real inside[N];                  // masks are 1 or 0 (bool arrays would keep loops scalar)
-    Real px[N], py[N], pz[N];        // the hit point
-    Real cx[N], cy[N], cz[N];        // point - centre
-    Real nx[N], ny[N], nz[N];        // the unit normal, facing the viewer
-    Real scaled_length[N];           // |(P - C) / s^2|
-    Real self_c[N];                  // |o'.o' - 1| of the self-shadow test
-    Real self_test[N];               // mask
-    Real vx[N], vy[N], vz[N];        // normalize(-direction)
+    LaneBits inside = 0;             // the far root was taken
+    Real px[N], py[N], pz[N];        // surface_point(): the point,
+    Real nx[N], ny[N], nz[N];        // the unit normal facing the viewer,
+    Real vx[N], vy[N], vz[N];        // the way to the viewer,
+    Real scaled_length[N];           // and |(P - C) / s^2|
+    Real abs_c[N];                   // own_abs_c(), for leaves_own_ellipsoid()
     Real r[N], g[N], b[N];           // the colour
 
     // The rays; lanes from count on repeat the last ray (their results are not used).
     void load(int n, const Real* from_x, const Real* from_y, const Real* from_z, const Real* x, const Real* y,
               const Real* z, const Real* root, const bool* in) {
         count = n;
+        inside = 0;
         for (int k = 0; k < N; ++k) {
             const int from = k < n ? k : n - 1;
             ox[k] = from_x[from], oy[k] = from_y[from], oz[k] = from_z[from];
-            dx[k] = x[from], dy[k] = y[from], dz[k] = z[from], t[k] = root[from], inside[k] = mask(in[from]);
+            dx[k] = x[from], dy[k] = y[from], dz[k] = z[from], t[k] = root[from];
+            inside |= in[from] ? kLaneBits<N>.bit[k] : 0;
         }
     }
 
-    // surface_point(): point = origin + direction * t; to_centre = point -
-    // centre; scaled = to_centre / s^2; scaled_length = length(scaled); normal = scaled *
-    // (1 / scaled_length), negated when inside.
-    void surface(const Vec3<Real>& centre, const Vec3<Real>& scale_squared) {
-        using std::sqrt;
-        for (int k = 0; k < N; ++k) {
-            px[k] = ox[k] + dx[k] * t[k], py[k] = oy[k] + dy[k] * t[k], pz[k] = oz[k] + dz[k] * t[k];
-            cx[k] = px[k] - centre.x, cy[k] = py[k] - centre.y, cz[k] = pz[k] - centre.z;
-            const Real sx = cx[k] / scale_squared.x, sy = cy[k] / scale_squared.y,
-                       sz = cz[k] / scale_squared.z;
-            const Real length = sqrt(sx * sx + sy * sy + sz * sz);
-            scaled_length[k] = length;
-            const Real inverse = Real(1) / length;
-            const Real ux = sx * inverse, uy = sy * inverse, uz = sz * inverse;
-            const bool flip = inside[k] != 0;
-            nx[k] = flip ? -ux : ux, ny[k] = flip ? -uy : uy, nz[k] = flip ? -uz : uz;
-        }
-    }
-
-    void start_colour(const Vec3<Real>& ambient) {
+    // surface_point() on ellipsoid e, the colour its ambient term, and |c| for the
+    // self-shadow test (as the tree's tiles compute it). The way to the viewer only where
+    // a specular term may show (else unused, and so not computed).
+    void surface(const Ellipsoid<Real>& e, const Vec3<Real>& ambient) {
+        if (specular_is_zero(e))
+            surface<false>(e);
+        else
+            surface<true>(e);
         for (int k = 0; k < N; ++k) r[k] = ambient.x, g[k] = ambient.y, b[k] = ambient.z;
     }
 
-    // self_clear()'s terms: o = to_centre / scale; self_c = |o.o - 1| (as intersect()
-    // computes it); the test holds outside and where self_c is a number.
-    void self_terms(const Vec3<Real>& scale) {
-        using std::abs;
-        for (int k = 0; k < N; ++k) {
-            const Real ox = cx[k] / scale.x, oy = cy[k] / scale.y, oz = cz[k] / scale.z;
-            self_c[k] = abs(ox * ox + oy * oy + oz * oz - Real(1));
-            self_test[k] = (Real(1) - inside[k]) * mask(self_c[k] == self_c[k]);
+    // light_ray() to the light at position; lit starts empty. False when no lane has
+    // the light in front.
+    bool light(const Vec3<Real>& position, Lights& l) const {
+        const Vec3<Q> at = Vec3<Q>::from(position);
+        l.front = 0, l.lit = 0;
+        for (int c = 0; c < N; c += kChunk) {
+            const LightRay<Q> ray = light_ray(surface_chunk(c, false), at);
+            store(ray.to_light, l.tx, l.ty, l.tz, c), store(ray.l, l.lx, l.ly, l.lz, c);
+            store(ray.distance, l.distance, c), store(ray.n_dot_l, l.n_dot_l, c);
+            l.front |= LaneBits(ray.faces) << c;
         }
-    }
-
-    // surface_point(): to_viewer = normalize(-direction).
-    void viewer() {
-        using std::sqrt;
-        for (int k = 0; k < N; ++k) {
-            const Real x = -dx[k], y = -dy[k], z = -dz[k];
-            const Real inverse = Real(1) / sqrt(x * x + y * y + z * z);
-            vx[k] = x * inverse, vy[k] = y * inverse, vz[k] = z * inverse;
-        }
-    }
-
-    // light_ray(): to_light = L - P; light_distance = length(to_light); l =
-    // to_light * (1 / light_distance); n_dot_l = dot(normal, l); front when n_dot_l > 0.
-    // lit starts empty. False when no pixel has the light in front.
-    bool light(const Vec3<Real>& position, Lanes& l) const {
-        using std::sqrt;
-        Real* const tx = l.tx;
-        Real* const ty = l.ty;
-        Real* const tz = l.tz;
-        Real* const distance = l.distance;
-        Real* const lx = l.lx;
-        Real* const ly = l.ly;
-        Real* const lz = l.lz;
-        Real* const n_dot_l = l.n_dot_l;
-        Real front[N];
-        for (int k = 0; k < N; ++k) {
-            const Real x = position.x - px[k], y = position.y - py[k], z = position.z - pz[k];
-            const Real d = sqrt(x * x + y * y + z * z);
-            const Real inverse = Real(1) / d;
-            const Real ux = x * inverse, uy = y * inverse, uz = z * inverse;
-            const Real cosine = nx[k] * ux + ny[k] * uy + nz[k] * uz;
-            tx[k] = x, ty[k] = y, tz[k] = z, distance[k] = d, lx[k] = ux, ly[k] = uy, lz[k] = uz;
-            n_dot_l[k] = cosine;
-            front[k] = mask(cosine > 0);
-        }
-        // Lanes from count on repeat the last ray, so all N lanes can be asked (a fixed
-        // vector loop instead of a scalar one over count).
-        l.front = bits(front);
-        l.lit = 0;
         return l.front != 0;
     }
 
     // The lanes where the own ellipsoid cannot block the shadow ray to light l
-    // (leaves_own_ellipsoid(), spec_rules.h). Only asked where the own ellipsoid is a
-    // candidate.
-    std::uint64_t self_clear(const Lanes& l) const {
-        std::uint64_t set = 0;
-        RT_VECTOR_LOOP
-        for (int k = 0; k < N; ++k) {
-            const Real clear = self_test[k] * mask(leaves_own_ellipsoid<Real>(scaled_length[k], l.distance[k],
-                                                                              l.n_dot_l[k], self_c[k]));
-            set |= clear != 0 ? kLaneBit[k] : 0;
-        }
-        return set;
+    // (leaves_own_ellipsoid(), spec_rules.h), seen from outside.
+    LaneBits self_clear(const Lights& l) const {
+        LaneBits set = 0;
+        for (int c = 0; c < N; c += kChunk)
+            set |= LaneBits(leaves_own_ellipsoid<Real>(Q::load(scaled_length + c), Q::load(l.distance + c),
+                                                       Q::load(l.n_dot_l + c), Q::load(abs_c + c)))
+                   << c;
+        return set & ~inside;
     }
 
-    // add_light(): colour += (Ip Kd * n_dot_l) * O where lit.
-    void add_diffuse(const Lanes& l, const Vec3<Real>& diffuse, const Vec3<Real>& colour) {
-        const Real* const n_dot_l = l.n_dot_l;
-        const std::uint64_t lit = l.lit;
-        RT_VECTOR_LOOP
-        for (int k = 0; k < N; ++k) {
-            const Real dr = r[k] + (diffuse.x * n_dot_l[k]) * colour.x;
-            const Real dg = g[k] + (diffuse.y * n_dot_l[k]) * colour.y;
-            const Real db = b[k] + (diffuse.z * n_dot_l[k]) * colour.z;
-            const bool adds = (lit & kLaneBit[k]) != 0;
-            r[k] = adds ? dr : r[k], g[k] = adds ? dg : g[k], b[k] = adds ? db : b[k];
+    // add_light() for light l, of this intensity, where l.lit.
+    void add_light(const Lights& l, const Vec3<Real>& intensity, const Finish<Q>& finish) {
+        const Vec3<Q> from = Vec3<Q>::from(intensity);
+        for (int c = 0; c < N; c += kChunk) {
+            const LaneBits lit = chunk_bits(l.lit, c);
+            if (lit == 0) continue;
+            LightRay<Q> ray;
+            ray.l = chunk(l.lx, l.ly, l.lz, c), ray.n_dot_l = Q::load(l.n_dot_l + c);
+            Vec3<Q> colour = chunk(r, g, b, c);
+            rt::add_light(colour, surface_chunk(c, finish.specular != 0), ray, from, finish, lit);
+            store(colour, r, g, b, c);
         }
     }
 
-    // add_light(): reflected = normal * (2 * n_dot_l) - l; r_dot_v = dot(reflected,
-    // to_viewer); colour += Ip Ks * r_dot_v^n where lit and r_dot_v > 0, the power by
-    // whole_power() (power.h), the same multiplications in each lane.
-    void specular_whole(const Lanes& l, const Vec3<Real>& specular, std::int32_t exponent) {
-        Real r_dot_v[N], result[N], base[N];
-        reflect(l, r_dot_v);
-        RT_VECTOR_LOOP
-        for (int k = 0; k < N; ++k) result[k] = 1, base[k] = r_dot_v[k];
-        for (std::int32_t bits = exponent; bits != 0; bits >>= 1) {
-            if (bits & 1) {
-                RT_VECTOR_LOOP
-                for (int k = 0; k < N; ++k) result[k] *= base[k];
-            }
-            RT_VECTOR_LOOP
-            for (Real& x : base) x *= x;
-        }
-        add_specular(l.lit, specular, r_dot_v, result);
-    }
-
-    // The same with std::pow for an exponent that is not a whole number.
-    void specular_pow(const Lanes& l, const Vec3<Real>& specular, Real exponent) {
-        using std::pow;
-        Real r_dot_v[N], result[N];
-        reflect(l, r_dot_v);
-        for (int k = 0; k < N; ++k)
-            result[k] = (l.lit & kLaneBit[k]) != 0 && r_dot_v[k] > 0 ? pow(r_dot_v[k], exponent) : Real(0);
-        add_specular(l.lit, specular, r_dot_v, result);
-    }
-
-    // mirrored(): direction - normal * (2 * dot(normal, direction)).
+    // mirrored(): each lane's direction off its normal, into (x, y, z).
     void mirror(Real* x, Real* y, Real* z) const {
-        for (int k = 0; k < N; ++k) {
-            const Real twice = 2 * (nx[k] * dx[k] + ny[k] * dy[k] + nz[k] * dz[k]);
-            x[k] = dx[k] - nx[k] * twice, y[k] = dy[k] - ny[k] * twice, z[k] = dz[k] - nz[k] * twice;
-        }
-    }
-
-    // Lane masks as bit sets, bit k for lane k (64-bit like the lanes of doubles, and
-    // selects of constant bits rather than shifts by k, so that GCC vectorises these).
-    static constexpr const std::uint64_t (&kLaneBit)[N] = kLaneBits<N>.bit;
-    static std::uint64_t bits(const Real* mask) {
-        std::uint64_t set = 0;
-        RT_VECTOR_LOOP
-        for (int k = 0; k < N; ++k) set |= mask[k] != 0 ? kLaneBit[k] : 0;
-        return set;
+        for (int c = 0; c < N; c += kChunk)
+            store(mirrored(chunk(nx, ny, nz, c), chunk(dx, dy, dz, c)), x, y, z, c);
     }
 
     // Whitted::shade(): colour += seen * kr, for lane k.
     void add(int k, const Vec3<Real>& term) { r[k] += term.x, g[k] += term.y, b[k] += term.z; }
 
 private:
-    static Real mask(bool b) { return b ? Real(1) : Real(0); }
-
-    void reflect(const Lanes& l, Real* r_dot_v) const {
-        const Real* const n_dot_l = l.n_dot_l;
-        const Real* const lx = l.lx;
-        const Real* const ly = l.ly;
-        const Real* const lz = l.lz;
-        RT_VECTOR_LOOP
-        for (int k = 0; k < N; ++k) {
-            const Real twice = 2 * n_dot_l[k];
-            const Real rx = nx[k] * twice - lx[k], ry = ny[k] * twice - ly[k], rz = nz[k] * twice - lz[k];
-            r_dot_v[k] = rx * vx[k] + ry * vy[k] + rz * vz[k];
+    template <bool kViewer>
+    void surface(const Ellipsoid<Real>& e) {
+        const Vec3<Q> centre = Vec3<Q>::from(e.centre), scale = Vec3<Q>::from(e.scale);
+        const Vec3<Q> scale_squared = Vec3<Q>::from(e.scale_squared);
+        for (int c = 0; c < N; c += kChunk) {
+            const SurfacePoint<Q> s =
+                surface_point(chunk(ox, oy, oz, c), chunk(dx, dy, dz, c), Q::load(t + c),
+                              chunk_bits(inside, c), centre, scale_squared);
+            store(s.point, px, py, pz, c), store(s.normal, nx, ny, nz, c);
+            store(s.scaled_length, scaled_length, c);
+            if (kViewer) store(s.to_viewer, vx, vy, vz, c);
+            store(own_abs_c(s.point, centre, scale), abs_c, c);
         }
     }
-
-    void add_specular(std::uint64_t lit, const Vec3<Real>& specular, const Real* r_dot_v, const Real* power) {
-        RT_VECTOR_LOOP
-        for (int k = 0; k < N; ++k) {
-            const bool adds =
-                mask((lit & kLaneBit[k]) != 0) * mask(r_dot_v[k] > 0) != 0;  // no &&: it would branch
-            const Real sr = r[k] + specular.x * power[k];
-            const Real sg = g[k] + specular.y * power[k];
-            const Real sb = b[k] + specular.z * power[k];
-            r[k] = adds ? sr : r[k], g[k] = adds ? sg : g[k], b[k] = adds ? sb : b[k];
-        }
+    static Vec3<Q> chunk(const Real* x, const Real* y, const Real* z, int c) {
+        return {Q::load(x + c), Q::load(y + c), Q::load(z + c)};
+    }
+    static LaneBits chunk_bits(LaneBits set, int c) { return (set >> c) & ((LaneBits(1) << kChunk) - 1); }
+    static void store(const Q& q, Real* to, int c) { std::memcpy(to + c, q.data(), sizeof(Real) * kChunk); }
+    static void store(const Vec3<Q>& v, Real* x, Real* y, Real* z, int c) {
+        store(v.x, x, c), store(v.y, y, c), store(v.z, z, c);
+    }
+    // The surface of lanes [c, c + kChunk), its way to the viewer only where asked (and
+    // computed: surface()).
+    SurfacePoint<Q> surface_chunk(int c, bool viewer) const {
+        SurfacePoint<Q> s;
+        s.point = chunk(px, py, pz, c), s.normal = chunk(nx, ny, nz, c);
+        s.scaled_length = Q::load(scaled_length + c);
+        if (viewer) s.to_viewer = chunk(vx, vy, vz, c);
+        return s;
     }
 };
 

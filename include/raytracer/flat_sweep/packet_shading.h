@@ -162,12 +162,9 @@ void Tracer<Real>::hit_colours(std::uint32_t i, int count, const Real* ox, const
     }
     HitPacket<Real, N> p;
     p.load(count, ox, oy, oz, dx, dy, dz, t, inside);
-    p.start_colour(surface.ambient);
-    p.surface(e.centre, e.scale_squared);
+    p.surface(e, surface.ambient);
     if (!surface.no_lighting) {
-        p.self_terms(e.scale);
-        if (!surface.no_specular) p.viewer();
-        const LightTerms* terms = light_terms_.data() + std::size_t(i) * lights_.size();
+        const auto finish = every_lane<HitPacket<Real, N>::kChunk>(finish_of(e));
         const PacketPlace place = packet_place(p, i);
         // The lights in batches: first each light's terms (independent chains of
         // square roots and divisions, which overlap), then the shadow rays, then the
@@ -199,14 +196,7 @@ void Tracer<Real>::hit_colours(std::uint32_t i, int count, const Real* ox, const
             for (std::size_t b = 0; b < size; ++b) {
                 // No lane lit: the sums would keep every lane's colour (selects).
                 if (!lit_any[b]) continue;
-                const std::size_t li = first + b;
-                p.add_diffuse(batch[b], terms[li].diffuse, e.colour);
-                if (surface.no_specular) continue;
-                if (surface.exponent >= 0) {
-                    p.specular_whole(batch[b], terms[li].specular, surface.exponent);
-                } else {
-                    p.specular_pow(batch[b], terms[li].specular, e.shininess);
-                }
+                p.add_light(batch[b], lights_[first + b].intensity, finish);
             }
         }
     }
@@ -236,7 +226,7 @@ std::uint64_t Tracer<Real>::shadow_lanes(const HitPacket<Real, N>& p, LightLanes
                                          std::uint64_t self_within, TraceScratch<Real>& scratch) const {
     using Bits = std::uint64_t;  // bit k for lane k
     // Selects of these constants rather than shifts by k: GCC then vectorises the
-    // loops below (see HitPacket::bits()).
+    // loops below.
     constexpr const Bits(&kLane)[N] = kLaneBits<N>.bit;
     // Which lanes have the light in front. Lanes from p.count on repeat the last ray:
     // they are never waiting.

@@ -21,7 +21,6 @@
 #include "raytracer/flat_sweep/sphere_bounds.h"
 #include "raytracer/image.h"
 #include "raytracer/reference/ellipsoid.h"
-#include "raytracer/reference/power.h"
 #include "raytracer/reference/spec_rules.h"
 #include "raytracer/scene.h"
 #include "raytracer/scene_precision.h"
@@ -65,23 +64,16 @@ public:
             lights_.push_back({V::from(l.position), V::from(l.intensity)});
             light_positions.push_back(V::from(l.position));
         }
-        // Per ellipsoid, the ambient term Ka*Ia*O (the same operations as per hit) and which
-        // terms are exactly zero (see hit_colours()).
+        // Per ellipsoid, the ambient term Ka*Ia*O (the same operations as per hit) and
+        // whether no light adds anything (see hit_colours()).
         for (const Ellipsoid<Real>& e : ellipsoids_) {
-            const bool no_specular = specular_is_zero(e);
-            Surface surface{(ambient_ * e.ka) * e.colour, no_specular, no_specular && e.kd == 0, false, {},
-                            whole_exponent(e.shininess)};
+            Surface surface{(ambient_ * e.ka) * e.colour, specular_is_zero(e) && e.kd == 0, false, {}};
             surface.flat = surface.no_lighting && !(e.kr > 0);
             surface.bytes[0] = to_byte(surface.ambient.x);
             surface.bytes[1] = to_byte(surface.ambient.y);
             surface.bytes[2] = to_byte(surface.ambient.z);
             surfaces_.push_back(surface);
         }
-        // Per ellipsoid and light, Ip*Kd and Ip*Ks: the first products of the handout's
-        // terms, computed once instead of per hit (the same operations, so the same bits).
-        for (const Ellipsoid<Real>& e : ellipsoids_)
-            for (const PointLight<Real>& l : lights_)
-                light_terms_.push_back({l.intensity * e.kd, l.intensity * e.ks});
         bounds_ = SphereBounds<Real>(ellipsoids_, light_positions);
         for (const Ellipsoid<Real>& e : ellipsoids_) eye_origin_.push_back(mapped_origin(e, V{}));
         // guarded: light buffers and packet shadows apply. Light buffers pay when there
@@ -367,17 +359,11 @@ private:
 
     std::vector<Ellipsoid<Real>> ellipsoids_;
     std::vector<PointLight<Real>> lights_;
-    struct LightTerms {
-        V diffuse, specular;  // Ip * Kd, Ip * Ks
-    };
-    std::vector<LightTerms> light_terms_;  // [ellipsoid * lights + light]
     struct Surface {
         V ambient;              // Ka * Ia * O
-        bool no_specular;       // Ks = 0 (and pow finite)
-        bool no_lighting;       // Kd = Ks = 0: no light adds anything
+        bool no_lighting;       // Kd = Ks = 0 (and pow finite): no light adds anything
         bool flat;              // no_lighting and Kr = 0: the colour is the ambient term
         std::uint8_t bytes[3];  // to_byte() of the ambient term
-        std::int32_t exponent;  // whole_exponent(n): -1 when pow() is needed
     };
     std::vector<Surface> surfaces_;  // per ellipsoid
     SphereBounds<Real> bounds_;

@@ -42,6 +42,17 @@ void set_lane(Finish<Lanes<Real, N>>& lanes, int k, const Finish<Real>& f) {
     lanes.specular = (lanes.specular & ~kLaneBits<N>.bit[k]) | (f.specular ? kLaneBits<N>.bit[k] : 0);
 }
 
+// A Finish the same in every lane (a packet of hits on one ellipsoid).
+template <int N, typename Real>
+Finish<Lanes<Real, N>> every_lane(const Finish<Real>& f) {
+    return {Vec3<Lanes<Real, N>>::from(f.colour),
+            f.kd,
+            f.ks,
+            f.shininess,
+            f.exponent,
+            f.specular ? LaneBits(~LaneBits(0) >> (64 - N)) : LaneBits(0)};
+}
+
 // A ray's hit: the point, the unit normal facing the viewer, and normalize(-direction).
 template <typename T>
 struct SurfacePoint {

@@ -5,6 +5,7 @@
 // decides with these, so that all agree bit for bit.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <limits>
 
@@ -74,6 +75,15 @@ template <typename Real, typename T>
 MaskOf<T> leaves_own_ellipsoid(const T& scaled_length, const T& distance, const T& n_dot_l, const T& abs_c) {
     const T slack = T(Real(32) * std::numeric_limits<Real>::epsilon());
     return scaled_length * distance * (n_dot_l - slack) > T(Real(2000)) * abs_c;
+}
+
+// |c| of leaves_own_ellipsoid() at a point on the ellipsoid of this centre and scale, as
+// mapped_origin() computes c. For one ray or lanes.
+template <typename T>
+T own_abs_c(const Vec3<T>& point, const Vec3<T>& centre, const Vec3<T>& scale) {
+    using std::abs;
+    const Vec3<T> mapped = (point - centre) / scale;
+    return abs(dot(mapped, mapped) - T(1));
 }
 
 // Whether the specular term Ks Ip (R.V)^n of an ellipsoid is exactly zero for every
