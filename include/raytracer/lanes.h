@@ -255,6 +255,13 @@ void set_lane(Vec3<Lanes<Real, N>>& v, int k, const Vec3<Real>& value) {
     v.x[k] = value.x, v.y[k] = value.y, v.z[k] = value.z;
 }
 
+// The lanes of one 32-byte vector register (4 doubles, 8 floats), at most N: code over
+// more lanes at once keeps its chains in memory rather than registers.
+template <typename Real, int N>
+inline constexpr int kRegisterLanes = 32 / int(sizeof(Real)) < 1
+                                          ? 1
+                                          : (32 / int(sizeof(Real)) < N ? 32 / int(sizeof(Real)) : N);
+
 // The mask a comparison of two T gives: bool for one ray, LaneBits for lanes; and the
 // integers that go with T (a whole exponent per ray).
 template <typename T>

@@ -31,8 +31,8 @@ class WhittedTiles {
 public:
     using Tracer = Whitted<Real, Geometry>;
     using V = Vec3<Real>;
-    using L = Lanes<Real, N>;  // a number per lane (lanes.h)
     static_assert(N >= 1 && N <= 32, "a tile's lanes are the bits of an unsigned");
+    static_assert(N % kRegisterLanes<Real, N> == 0, "whole registers");
 
     explicit WhittedTiles(const Tracer& tracer)
         : tracer_(tracer), hints_(tracer.ellipsoid_count(), tracer.light_count()) {
@@ -46,20 +46,26 @@ public:
 
     // One bounce's lanes: the rays, what they hit, and their colours. The eye rays'
     // origins (bounce 0) are the camera's (0, 0, 0) from the scratch's making on:
-    // nothing writes them. Lanes not in play hold what an earlier tile left: their
-    // arithmetic runs and is never read.
+    // nothing writes them. The shading runs a vector register of lanes at a time
+    // (kChunk lanes: over all N at once its chains spill their registers, as the flat
+    // sweep's packets measured, hit_packet.h). Lanes not in play hold what an earlier
+    // tile left: their arithmetic runs and is never read.
+    static constexpr int kChunk = kRegisterLanes<Real, N>, kChunks = N / kChunk;
+    using Q = Lanes<Real, kChunk>;  // a number per lane of a chunk (lanes.h)
+    struct Chunk {
+        Vec3<Q> origin, direction, centre, scale, scale_squared, ambient;  // each hit's terms
+        Q t, kr;
+        Finish<Q> finish;
+        SurfacePoint<Q> surface;
+        Q abs_c;  // own_abs_c()
+        Vec3<Q> colour;
+    };
     struct Bounce {
         V origin[N], direction[N];  // as the geometry's bundle queries take them
         NearestHit<Real> hit[N];
-        struct Gathered {  // each hit's terms in its lane
-            Vec3<L> origin, direction, centre, scale, scale_squared, ambient;
-            L t;
-        } gathered;
         V point[N];  // the hit points, for the shadow bundles and the next bounce
-        SurfacePoint<L> surface;
-        Finish<L> finish;
-        L kr;
-        Vec3<L> colour;
+        Chunk chunk[kChunks];
+        Vec3<Real> colour(int k) const { return lane(chunk[k / kChunk].colour, k % kChunk); }
     };
     // A thread's working memory: the lanes of each bounce, made once (a tile's arrays
     // are a few KB: set up per tile, they cost more than a missed tile's tracing).
@@ -127,87 +133,134 @@ public:
         }
         for (unsigned m = hits; m != 0; m &= m - 1) {
             const int k = lowest_bit(m);
-            out[k][0] = to_byte(eye.colour.x[k]), out[k][1] = to_byte(eye.colour.y[k]),
-            out[k][2] = to_byte(eye.colour.z[k]);
+            const V colour = eye.colour(k);
+            out[k][0] = to_byte(colour.x), out[k][1] = to_byte(colour.y), out[k][2] = to_byte(colour.z);
         }
     }
 
 private:
     // Whitted::trace() for each lane in lanes of bounce `depth` (0: the eye rays, which
     // see BACK where they miss; then mirrored rays, which see black): its rays' colours;
-    // the lanes whose rays hit something. Whitted::shade()'s arithmetic for all lanes at
-    // once (shading.h over Lanes), its branches as lane sets.
+    // the lanes whose rays hit something. Whitted::shade()'s arithmetic for all lanes
+    // (shading.h over Lanes, a chunk at a time), its branches as lane sets.
     unsigned trace(int depth, unsigned lanes, Scratch& scratch) const {
         Bounce& b = scratch.bounces[static_cast<std::size_t>(depth)];
         tracer_.geometry().closest(b.origin, b.direction, lanes, depth == 0 ? kEyeRayMinT : kReflectedRayMinT,
                                    b.hit);
-        const Vec3<L> miss = Vec3<L>::from(depth == 0 ? tracer_.background() : V{});
-        const bool may_reflect = depth < kMaxReflections;
+        const HitLanes h = gather(b, lanes, depth < kMaxReflections);
+        const Vec3<Q> miss = Vec3<Q>::from(depth == 0 ? tracer_.background() : V{});
+        static_assert(LightShells<Real>::kMax + 1 <= ClearedLanes::kMax, "room for the shells and the own");
+        unsigned in_shell[LightShells<Real>::kMax] = {};  // the lanes whose points each shell holds
+        for (int i = 0; i < kChunks; ++i) {
+            Chunk& c = b.chunk[i];
+            const LaneBits hit = part(h.hits, i);
+            c.colour = select(hit, c.ambient, miss);
+            if (hit == 0) continue;
+            c.surface =
+                surface_point(c.origin, c.direction, c.t, part(h.inside, i), c.centre, c.scale_squared);
+            c.abs_c = own_abs_c(c.surface.point, c.centre, c.scale);
+            for (LaneBits m = hit; m != 0; m &= m - 1)
+                b.point[i * kChunk + lowest_bit(m)] = lane(c.surface.point, lowest_bit(m));
+            for (int s = 0; s < shells_.count(); ++s)
+                in_shell[s] |= static_cast<unsigned>(shells_.holding(s, c.surface.point) << (i * kChunk));
+        }
+        if (h.hits == 0) return 0;
+        for (std::size_t li = 0; li < tracer_.light_count() && h.lit != 0; ++li)
+            add_light_lanes(b, h, li, in_shell);
+        if (h.reflecting == 0) return h.hits;
+        Bounce& next = scratch.bounces[static_cast<std::size_t>(depth) + 1];
+        for (int i = 0; i < kChunks; ++i) {
+            const LaneBits mirrors = part(h.reflecting, i);
+            if (mirrors == 0) continue;
+            const Vec3<Q> onward = mirrored(b.chunk[i].surface.normal, b.chunk[i].direction);
+            for (LaneBits m = mirrors; m != 0; m &= m - 1) {
+                const int j = lowest_bit(m), k = i * kChunk + j;
+                next.origin[k] = b.point[k], next.direction[k] = lane(onward, j);
+            }
+        }
+        trace(depth + 1, h.reflecting, scratch);
+        for (int i = 0; i < kChunks; ++i) {
+            const LaneBits mirrors = part(h.reflecting, i);
+            Chunk& c = b.chunk[i];
+            if (mirrors != 0) c.colour = select(mirrors, c.colour + next.chunk[i].colour * c.kr, c.colour);
+        }
+        return h.hits;
+    }
+
+    // The lanes of a bounce that hit something, that some light may reach (Kd or Ks
+    // not 0), that reflect (Kr > 0, a bounce left), and that see an inner surface.
+    struct HitLanes {
         unsigned hits = 0, lit = 0, reflecting = 0;
-        auto& [origin, direction, centre, scale, scale_squared, ambient, t] = b.gathered;
         LaneBits inside = 0;
-        for (unsigned m = lanes; m != 0; m &= m - 1) {  // gather each hit's terms into its lane
-            const int k = lowest_bit(m);
+    };
+    // Each hit's terms into its lane.
+    HitLanes gather(Bounce& b, unsigned lanes, bool may_reflect) const {
+        HitLanes h;
+        for (unsigned m = lanes; m != 0; m &= m - 1) {
+            const int k = lowest_bit(m), j = k % kChunk;
             const NearestHit<Real>& hit = b.hit[k];
             if (!hit.found()) continue;
             const Ellipsoid<Real>& e = tracer_.geometry().ellipsoid(hit.ellipsoid);
             const typename Tracer::Material& material = tracer_.material(hit.ellipsoid);
-            set_lane(origin, k, b.origin[k]), set_lane(direction, k, b.direction[k]);
-            set_lane(centre, k, e.centre), set_lane(scale, k, e.scale),
-                set_lane(scale_squared, k, e.scale_squared);
-            set_lane(ambient, k, material.ambient);
-            t[k] = hit.t;
-            inside |= hit.inside ? LaneBits(1) << k : 0;
-            set_lane(b.finish, k, finish_of(e));
-            b.kr[k] = e.kr;
-            hits |= 1U << k;
-            lit |= material.no_lighting ? 0U : 1U << k;
-            reflecting |= may_reflect && e.kr > 0 ? 1U << k : 0U;
+            Chunk& c = b.chunk[k / kChunk];
+            set_lane(c.origin, j, b.origin[k]), set_lane(c.direction, j, b.direction[k]);
+            set_lane(c.centre, j, e.centre), set_lane(c.scale, j, e.scale),
+                set_lane(c.scale_squared, j, e.scale_squared);
+            set_lane(c.ambient, j, material.ambient);
+            c.t[j] = hit.t, c.kr[j] = e.kr;
+            set_lane(c.finish, j, finish_of(e));
+            h.inside |= hit.inside ? LaneBits(1) << k : 0;
+            h.hits |= 1U << k;
+            h.lit |= material.no_lighting ? 0U : 1U << k;
+            h.reflecting |= may_reflect && e.kr > 0 ? 1U << k : 0U;
         }
-        b.colour = select(LaneBits(hits), ambient, miss);
-        if (hits == 0) return hits;
-        b.surface = surface_point(origin, direction, t, inside, centre, scale_squared);
-        const L abs_c = own_abs_c(b.surface.point, centre, scale);
-        for (unsigned m = hits; m != 0; m &= m - 1)
-            b.point[lowest_bit(m)] = lane(b.surface.point, lowest_bit(m));
-        static_assert(LightShells<Real>::kMax + 1 <= ClearedLanes::kMax, "room for the shells and the own");
-        unsigned in_shell[LightShells<Real>::kMax];  // the lanes whose points each shell holds
-        for (int s = 0; s < shells_.count(); ++s)
-            in_shell[s] = hits & static_cast<unsigned>(shells_.holding(s, b.surface.point));
-        for (std::size_t li = 0; li < tracer_.light_count() && lit != 0; ++li) {
-            const LightRay<L> r = light_ray(b.surface, Vec3<L>::from(tracer_.light_position(li)));
-            const unsigned facing = lit & static_cast<unsigned>(r.faces);  // with a light ray to try
-            // The lanes whose own ellipsoid cannot block their shadow ray (seen from outside).
-            const auto own_clear = static_cast<unsigned>(
-                ~inside & leaves_own_ellipsoid<Real>(b.surface.scaled_length, r.distance, r.n_dot_l, abs_c));
-            ClearedLanes in_shells;  // this light's shells, for the lanes they hold
-            for (unsigned m = shells_.of_light(li); m != 0; m &= m - 1)
-                in_shells.add(shells_.ellipsoid(lowest_bit(m)), in_shell[lowest_bit(m)]);
-            unsigned blocked = 0;
-            for (unsigned left = facing; left != 0;) {
-                const unsigned bundle = close_lanes(b, left);  // on one ellipsoid, or one lane
-                left &= ~bundle;
-                const std::uint32_t on = b.hit[lowest_bit(bundle)].ellipsoid;
-                ClearedLanes cleared = in_shells;
-                cleared.add(on, own_clear & bundle);
-                std::uint32_t blocker = hints_.load(on, li);
-                blocked |= tracer_.geometry().occluded(b.point, tracer_.light_position(li), bundle, blocker,
-                                                       cleared);
-                hints_.store(on, li, blocker);
-            }
-            add_light(b.colour, b.surface, r, Vec3<L>::from(tracer_.light_intensity(li)), b.finish,
-                      LaneBits(facing & ~blocked));
+        return h;
+    }
+
+    // Light li's terms where it reaches the lanes' points: their light rays, then their
+    // shadow rays as bundles (Bvh::occluded() for lanes), then add_light().
+    void add_light_lanes(Bounce& b, const HitLanes& h, std::size_t li,
+                         const unsigned (&in_shell)[LightShells<Real>::kMax]) const {
+        const Vec3<Q> light = Vec3<Q>::from(tracer_.light_position(li));
+        LightRay<Q> r[kChunks];
+        unsigned facing = 0;     // with a light ray to try
+        unsigned own_clear = 0;  // whose own ellipsoid cannot block their shadow ray (seen from outside)
+        for (int i = 0; i < kChunks; ++i) {
+            if (part(h.lit, i) == 0) continue;
+            const Chunk& c = b.chunk[i];
+            r[i] = light_ray(c.surface, light);
+            facing |= static_cast<unsigned>(r[i].faces << (i * kChunk));
+            own_clear |= static_cast<unsigned>(
+                leaves_own_ellipsoid<Real>(c.surface.scaled_length, r[i].distance, r[i].n_dot_l, c.abs_c)
+                << (i * kChunk));
         }
-        if (reflecting == 0) return hits;
-        Bounce& next = scratch.bounces[static_cast<std::size_t>(depth) + 1];
-        const Vec3<L> onward = mirrored(b.surface.normal, direction);
-        for (unsigned m = reflecting; m != 0; m &= m - 1) {
-            const int k = lowest_bit(m);
-            next.origin[k] = b.point[k], next.direction[k] = lane(onward, k);
+        facing &= h.lit, own_clear &= static_cast<unsigned>(~h.inside);
+        ClearedLanes in_shells;  // this light's shells, for the lanes they hold
+        for (unsigned m = shells_.of_light(li); m != 0; m &= m - 1)
+            in_shells.add(shells_.ellipsoid(lowest_bit(m)), in_shell[lowest_bit(m)] & h.hits);
+        unsigned blocked = 0;
+        for (unsigned left = facing; left != 0;) {
+            const unsigned bundle = close_lanes(b, left);  // on one ellipsoid, or one lane
+            left &= ~bundle;
+            const std::uint32_t on = b.hit[lowest_bit(bundle)].ellipsoid;
+            ClearedLanes cleared = in_shells;
+            cleared.add(on, own_clear & bundle);
+            std::uint32_t blocker = hints_.load(on, li);
+            blocked |=
+                tracer_.geometry().occluded(b.point, tracer_.light_position(li), bundle, blocker, cleared);
+            hints_.store(on, li, blocker);
         }
-        trace(depth + 1, reflecting, scratch);
-        b.colour = select(LaneBits(reflecting), b.colour + next.colour * b.kr, b.colour);
-        return hits;
+        const Vec3<Q> intensity = Vec3<Q>::from(tracer_.light_intensity(li));
+        for (int i = 0; i < kChunks; ++i) {
+            const LaneBits shown = part(facing & ~blocked, i);
+            Chunk& c = b.chunk[i];
+            if (shown != 0) add_light(c.colour, c.surface, r[i], intensity, c.finish, shown);
+        }
+    }
+
+    // Chunk i's lanes of a lane set, as its own lanes 0 to kChunk - 1.
+    static LaneBits part(LaneBits lanes, int i) {
+        return (lanes >> (i * kChunk)) & ((LaneBits(1) << kChunk) - 1);
     }
 
     // A bundle for the first of lanes: the lanes on its ellipsoid, when there are at

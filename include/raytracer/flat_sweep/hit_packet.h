@@ -72,8 +72,7 @@ struct LightLanes {
 template <typename Real, int Width = kPacket>
 struct HitPacket {
     static constexpr int N = Width;
-    // The lanes of one vector register, or all N where fewer.
-    static constexpr int kChunk = std::min(N, std::max(1, int(32 / sizeof(Real))));
+    static constexpr int kChunk = kRegisterLanes<Real, N>;
     static_assert(N % kChunk == 0, "whole registers");
     using Q = Lanes<Real, kChunk>;
     using Lights = LightLanes<Real, Width>;
