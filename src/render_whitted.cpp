@@ -92,7 +92,9 @@ void render_pixels_to(const Scene& scene, Geometry geometry, RowSink& sink, unsi
 template <typename Real>
 void render_whitted_to(const Scene& scene, RowSink& sink, unsigned threads) {
     // The tree is built on the threads asked even for an image of a few rows.
-    Bvh<Real> tree(make_ellipsoids<Real>(scene), threads_asked(threads));
+    Bvh<Real> tree(
+        scene.spheres.size(), [&scene](std::size_t i) { return make_ellipsoid<Real>(scene.spheres[i]); },
+        threads_asked(threads));
     render_pixels_to<true, Real>(scene, std::move(tree), sink, thread_count(scene, threads));
 }
 

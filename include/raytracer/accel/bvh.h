@@ -55,8 +55,13 @@ public:
     using C = AtLeastDouble<Real>;  // boxes and slab tests
     static_assert(Width >= 2 && Width <= 16, "a node holds 2 to 16 children");
 
-    // threads: how many may build the tree (1 or 2 are used).
-    explicit Bvh(std::vector<Ellipsoid<Real>> ellipsoids, unsigned threads = 1);
+    // Over ellipsoid_of(i) for i < count, made where needed (for its box, then in leaf
+    // order beside the collapse). threads: how many may build the tree (1 or 2 are used).
+    template <typename EllipsoidOf>
+    Bvh(std::size_t count, EllipsoidOf ellipsoid_of, unsigned threads = 1);
+    explicit Bvh(const std::vector<Ellipsoid<Real>>& ellipsoids, unsigned threads = 1)
+        : Bvh(
+              ellipsoids.size(), [&ellipsoids](std::size_t i) { return ellipsoids[i]; }, threads) {}
 
     // As BruteForce::closest(): the nearest visible root beyond min_t.
     NearestHit<Real> closest(const V& origin, const V& direction, double min_t) const {
@@ -320,65 +325,11 @@ private:
 };
 
 template <typename Real, int Width>
-template <bool kNearestFirst, typename Leaf>
-void Bvh<Real, Width>::traverse(const OneRay& ray, C t1, Leaf leaf) const {
-    if (items_.empty()) return;
-    if (!ray.sloped)
-        leaf(Child{0, static_cast<std::uint32_t>(items_.size())}, t1);
-    else if (ray.guarded)
-        traverse<kNearestFirst, true>(ray.slab, t1, leaf);
-    else
-        traverse<kNearestFirst, false>(ray.slab, t1, leaf);
-}
-
-// Down the tree from the root: at each node the ray goes on into the first child it
-// meets (the nearest where kNearestFirst) and leaves the others on the stack, so a
-// node met by one child's box only costs no stack traffic (as Embree's traversal).
-template <typename Real, int Width>
-template <bool kNearestFirst, bool kGuarded, typename Leaf>
-void Bvh<Real, Width>::traverse(const SlabRay<C>& ray, C t1, Leaf leaf) const {
-    StackEntry stack[kStack];  // NOLINT(cppcoreguidelines-pro-type-member-init): written before read
-    int size = 0;
-    Child current = root_;
-    for (;;) {
-        while (current.count == 0) {
-            const Node& node = nodes_[current.first];
-            C near[Width];
-            unsigned mask = children_met<kGuarded>(node, ray, t1, near);
-            if (mask == 0) break;
-            int k = lowest_bit(mask);
-            mask &= mask - 1;
-            if (!kNearestFirst) {
-                for (; mask != 0; mask &= mask - 1) stack[size++] = {node.child[lowest_bit(mask)], 0};
-                current = node.child[k];
-                continue;
-            }
-            // The others pushed farthest first, so that the nearest is popped next.
-            const int pushed = size;
-            for (; mask != 0; mask &= mask - 1) {
-                int j = lowest_bit(mask);
-                if (near[j] < near[k]) std::swap(j, k);
-                int at = size++;
-                for (; at > pushed && stack[at - 1].near < near[j]; --at) stack[at] = stack[at - 1];
-                stack[at] = {node.child[j], near[j]};
-            }
-            current = node.child[k];
-        }
-        if (current.count > 0 && leaf(current, t1)) return;
-        // The next entry that may still be met: t1 may have come down since it was pushed.
-        do {
-            if (size == 0) return;
-            --size;
-        } while (stack[size].near > t1);
-        current = stack[size].child;
-    }
-}
-
-template <typename Real, int Width>
-Bvh<Real, Width>::Bvh(std::vector<Ellipsoid<Real>> ellipsoids, unsigned threads) {
-    std::vector<BuildItem<C>> items(ellipsoids.size());
-    for (std::size_t i = 0; i < ellipsoids.size(); ++i)
-        items[i] = build_item<C>(ellipsoids[i], static_cast<std::uint32_t>(i));
+template <typename EllipsoidOf>
+Bvh<Real, Width>::Bvh(std::size_t count, EllipsoidOf ellipsoid_of, unsigned threads) {
+    std::vector<BuildItem<C>> items(count);
+    for (std::size_t i = 0; i < count; ++i)
+        items[i] = build_item<C>(ellipsoid_of(i), static_cast<std::uint32_t>(i));
     const std::vector<BuildNode<C>> binary = BinaryTreeBuilder<C>().build(items, threads);
     index_.resize(items.size()), position_.resize(items.size());
     for (std::uint32_t k = 0; k < items.size(); ++k)
@@ -386,14 +337,18 @@ Bvh<Real, Width>::Bvh(std::vector<Ellipsoid<Real>> ellipsoids, unsigned threads)
     std::vector<BuildItem<C>>().swap(items);  // not needed past this: a lower peak
     if (binary.empty()) return;
     bounds_ = binary[0].box, guard_ = binary[0].guard;
-    // The ellipsoids into leaf order, in place, beside the collapse (sphereflake 5: 2.8 ms each).
-    auto permute = [&] { permute_in_place(ellipsoids, index_); };
+    // The ellipsoids in leaf order beside the collapse.
+    auto in_leaf_order = [&] {
+        items_.reserve(count);
+        for (const std::uint32_t i : index_) items_.push_back(ellipsoid_of(i));
+    };
     auto collapse_tree = [&] { root_ = collapse<Width>(binary, nodes_); };
-    if (threads > 1 && ellipsoids.size() >= BinaryTreeBuilder<C>::kItemsPerThread)
-        run_beside(permute, collapse_tree);
+    if (threads > 1 && count >= BinaryTreeBuilder<C>::kItemsPerThread)
+        run_beside(in_leaf_order, collapse_tree);
     else
-        permute(), collapse_tree();
-    items_ = std::move(ellipsoids);
+        in_leaf_order(), collapse_tree();
 }
 
 }  // namespace rt
+
+#include "raytracer/accel/bvh_traverse.h"  // Bvh::traverse(), the descent

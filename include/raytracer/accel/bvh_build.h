@@ -367,18 +367,4 @@ WideChild collapse(const std::vector<BuildNode<C>>& binary, std::vector<WideNode
     return {detail::collapse_node<Width>(binary, 0, nodes), 0};
 }
 
-// v[k] becomes v[from[k]] for each k (from a permutation), cycle by cycle in place: no
-// second copy of v.
-template <typename T>
-void permute_in_place(std::vector<T>& v, const std::vector<std::uint32_t>& from) {
-    std::vector<bool> placed(v.size());
-    for (std::size_t k = 0; k < v.size(); ++k) {
-        if (placed[k]) continue;
-        const T first = v[k];
-        std::size_t j = k;
-        for (; from[j] != k; j = from[j]) v[j] = v[from[j]], placed[j] = true;
-        v[j] = first, placed[j] = true;
-    }
-}
-
 }  // namespace rt

@@ -1,0 +1,68 @@
+// The descent of the tree of bvh.h: Bvh::traverse(), for one ray and for a bundle's slab
+// ray, which visits the leaves whose boxes the ray may meet (children_met(),
+// slab_rays.h).
+#pragma once
+
+#include <utility>
+
+#include "raytracer/accel/bvh.h"
+#include "raytracer/bit_scan.h"
+
+namespace rt {
+
+template <typename Real, int Width>
+template <bool kNearestFirst, typename Leaf>
+void Bvh<Real, Width>::traverse(const OneRay& ray, C t1, Leaf leaf) const {
+    if (items_.empty()) return;
+    if (!ray.sloped)
+        leaf(Child{0, static_cast<std::uint32_t>(items_.size())}, t1);
+    else if (ray.guarded)
+        traverse<kNearestFirst, true>(ray.slab, t1, leaf);
+    else
+        traverse<kNearestFirst, false>(ray.slab, t1, leaf);
+}
+
+// Down the tree from the root: at each node the ray goes on into the first child it
+// meets (the nearest where kNearestFirst) and leaves the others on the stack, so a
+// node met by one child's box only costs no stack traffic (as Embree's traversal).
+template <typename Real, int Width>
+template <bool kNearestFirst, bool kGuarded, typename Leaf>
+void Bvh<Real, Width>::traverse(const SlabRay<C>& ray, C t1, Leaf leaf) const {
+    StackEntry stack[kStack];  // NOLINT(cppcoreguidelines-pro-type-member-init): written before read
+    int size = 0;
+    Child current = root_;
+    for (;;) {
+        while (current.count == 0) {
+            const Node& node = nodes_[current.first];
+            C near[Width];
+            unsigned mask = children_met<kGuarded>(node, ray, t1, near);
+            if (mask == 0) break;
+            int k = lowest_bit(mask);
+            mask &= mask - 1;
+            if (!kNearestFirst) {
+                for (; mask != 0; mask &= mask - 1) stack[size++] = {node.child[lowest_bit(mask)], 0};
+                current = node.child[k];
+                continue;
+            }
+            // The others pushed farthest first, so that the nearest is popped next.
+            const int pushed = size;
+            for (; mask != 0; mask &= mask - 1) {
+                int j = lowest_bit(mask);
+                if (near[j] < near[k]) std::swap(j, k);
+                int at = size++;
+                for (; at > pushed && stack[at - 1].near < near[j]; --at) stack[at] = stack[at - 1];
+                stack[at] = {node.child[j], near[j]};
+            }
+            current = node.child[k];
+        }
+        if (current.count > 0 && leaf(current, t1)) return;
+        // The next entry that may still be met: t1 may have come down since it was pushed.
+        do {
+            if (size == 0) return;
+            --size;
+        } while (stack[size].near > t1);
+        current = stack[size].child;
+    }
+}
+
+}  // namespace rt
