@@ -263,6 +263,14 @@ void set_lane(Vec3<Lanes<Real, N>>& v, int k, const Vec3<Real>& value) {
 template <typename Real, int N>
 inline constexpr int kRegisterLanes = std::min(N, std::max(1, 32 / int(sizeof(Real))));
 
+// Lanes [first, first + M) of a lane set, as lanes 0 to M - 1 (a register's chunk of
+// a tile's or a packet's lanes).
+template <int M>
+LaneBits lanes_from(LaneBits set, int first) {
+    static_assert(M >= 1 && M < 64, "a part of a set");
+    return (set >> first) & ((LaneBits(1) << M) - 1);
+}
+
 // The mask a comparison of two T gives: bool for one ray, LaneBits for lanes; and the
 // integers that go with T (a whole exponent per ray).
 template <typename T>

@@ -259,9 +259,7 @@ private:
     }
 
     // Chunk i's lanes of a lane set, as its own lanes 0 to kChunk - 1.
-    static LaneBits part(LaneBits lanes, int i) {
-        return (lanes >> (i * kChunk)) & ((LaneBits(1) << kChunk) - 1);
-    }
+    static LaneBits part(LaneBits lanes, int i) { return lanes_from<kChunk>(lanes, i * kChunk); }
 
     // A bundle for the first of lanes: the lanes on its ellipsoid, when there are at
     // least kBundleLanes of them and their points lie within its smallest diameter of

@@ -140,7 +140,7 @@ struct HitPacket {
     void add_light(const Lights& l, const Vec3<Real>& intensity, const Finish<Q>& finish) {
         const Vec3<Q> from = Vec3<Q>::from(intensity);
         for (int c = 0; c < N; c += kChunk) {
-            const LaneBits lit = chunk_bits(l.lit, c);
+            const LaneBits lit = lanes_from<kChunk>(l.lit, c);
             if (lit == 0) continue;
             LightRay<Q> ray;
             ray.l = chunk(l.lx, l.ly, l.lz, c), ray.n_dot_l = Q::load(l.n_dot_l + c);
@@ -167,7 +167,7 @@ private:
         for (int c = 0; c < N; c += kChunk) {
             const SurfacePoint<Q> s =
                 surface_point(chunk(ox, oy, oz, c), chunk(dx, dy, dz, c), Q::load(t + c),
-                              chunk_bits(inside, c), centre, scale_squared);
+                              lanes_from<kChunk>(inside, c), centre, scale_squared);
             store(s.point, px, py, pz, c), store(s.normal, nx, ny, nz, c);
             store(s.scaled_length, scaled_length, c);
             if (kViewer) store(s.to_viewer, vx, vy, vz, c);
@@ -177,7 +177,6 @@ private:
     static Vec3<Q> chunk(const Real* x, const Real* y, const Real* z, int c) {
         return {Q::load(x + c), Q::load(y + c), Q::load(z + c)};
     }
-    static LaneBits chunk_bits(LaneBits set, int c) { return (set >> c) & ((LaneBits(1) << kChunk) - 1); }
     static void store(const Q& q, Real* to, int c) { std::memcpy(to + c, q.data(), sizeof(Real) * kChunk); }
     static void store(const Vec3<Q>& v, Real* x, Real* y, Real* z, int c) {
         store(v.x, x, c), store(v.y, y, c), store(v.z, z, c);
