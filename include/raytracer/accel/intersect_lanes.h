@@ -25,6 +25,7 @@ void intersect_lanes(const Ellipsoid<Real>& e, const Real* ox, const Real* oy, c
     // Results into local arrays first: with three output pointers that may alias the six
     // inputs GCC gives up on the run-time alias checks and keeps the loop scalar.
     Real hits[N], nears[N], fars[N];
+    RT_VECTOR_LOOP
     for (int k = 0; k < N; ++k) {
         // mapped_origin(): o = (origin - C) / s, c = o.o - 1; intersect_mapped(): d / s.
         const Real mx = (ox[k] - centre.x) / scale.x, my = (oy[k] - centre.y) / scale.y,

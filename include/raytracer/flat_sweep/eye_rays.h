@@ -21,6 +21,7 @@
 #include <limits>
 #include <vector>
 
+#include "raytracer/compiler.h"
 #include "raytracer/reference/ellipsoid.h"
 #include "raytracer/reference/unit_sphere_roots.h"
 #include "raytracer/vec3.h"
@@ -114,10 +115,12 @@ private:
         Real hit[kBlock], near[kBlock], far[kBlock];
         for (int c0 = first; c0 <= last; c0 += kBlock) {
             const int n = last - c0 + 1 < kBlock ? last - c0 + 1 : kBlock;
+            RT_VECTOR_LOOP
             for (int k = 0; k < n; ++k) {
                 const LaneRoots<Real> r = unit_sphere_roots(ox, oy, oz, c_term, column_dx(c0 + k), dy, dz);
                 hit[k] = r.hit, near[k] = r.near, far[k] = r.far;
             }
+            RT_VECTOR_LOOP
             for (int k = 0; k < n; ++k) {
                 const int c = c0 + k;
                 // Tracer::closest(); a NaN best t (no hit yet) makes !(t >= best t) true, and

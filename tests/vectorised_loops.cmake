@@ -1,0 +1,55 @@
+# build.vectorised_loops: each loop that follows an RT_VECTOR_LOOP line in include/ and
+# src/ appears in GCC's -fopt-info-vec-optimized reports (REPORTS, a list of files) as
+# "<file>:<line>:<column>: optimized: loop vectorized". A loop GCC keeps scalar gives
+# the same bytes, so only this test notices it (the eye-ray loop once ran scalar for two
+# days, 2x slower).
+#   cmake -DSOURCE_DIR=<repository> -DREPORTS=<report;...> -P vectorised_loops.cmake
+cmake_minimum_required(VERSION 3.20)
+set(vectorised "")
+foreach(report IN LISTS REPORTS)
+  if(NOT EXISTS "${report}")
+    message(FATAL_ERROR "no report ${report}: build raytracer_core with GCC first")
+  endif()
+  file(STRINGS "${report}" lines REGEX ": optimized: loop vectorized")
+  foreach(line IN LISTS lines)
+    string(REGEX MATCH "^([^:]+):([0-9]+):" place "${line}")
+    get_filename_component(file "${CMAKE_MATCH_1}" REALPATH)
+    list(APPEND vectorised "${file}:${CMAKE_MATCH_2}")
+  endforeach()
+endforeach()
+
+file(GLOB_RECURSE sources "${SOURCE_DIR}/include/*.h" "${SOURCE_DIR}/src/*.cpp")
+set(marked 0)
+set(scalar "")
+foreach(source IN LISTS sources)
+  get_filename_component(source "${source}" REALPATH)
+  # One list element per line: ';' and brackets, which CMake's lists treat specially,
+  # replaced first.
+  file(READ "${source}" text)
+  string(REGEX REPLACE "[][;]" "_" text "${text}")
+  string(REPLACE "\n" ";" text "${text}")
+  set(number 0)
+  set(next_is_marked FALSE)
+  foreach(line IN LISTS text)
+    math(EXPR number "${number} + 1")
+    if(next_is_marked)
+      math(EXPR marked "${marked} + 1")
+      if(NOT "${source}:${number}" IN_LIST vectorised)
+        list(APPEND scalar "${source}:${number}")
+      endif()
+    endif()
+    set(next_is_marked FALSE)
+    if(line MATCHES "^[ \t]*RT_VECTOR_LOOP[ \t]*$")
+      set(next_is_marked TRUE)
+    endif()
+  endforeach()
+endforeach()
+
+if(marked EQUAL 0)
+  message(FATAL_ERROR "no loop marked RT_VECTOR_LOOP found under ${SOURCE_DIR}")
+endif()
+if(scalar)
+  list(JOIN scalar "\n  " shown)
+  message(FATAL_ERROR "GCC did not vectorise these marked loops:\n  ${shown}")
+endif()
+message(STATUS "${marked} marked loops, all vectorised")
