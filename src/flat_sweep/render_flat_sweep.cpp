@@ -234,6 +234,11 @@ private:
                     const auto column = static_cast<std::size_t>(c);
                     const std::uint32_t i = hits.ellipsoid[column];
                     if (i == EyeRowHits<Real>::kNone) continue;  // the background
+                    // An ambient-only surface's bytes are known: no packet.
+                    if (const std::uint8_t* bytes = tracer_.flat_bytes(i)) {
+                        std::copy(bytes, bytes + 3, row_out + column * 3);
+                        continue;
+                    }
                     Packet<Real>& packet = work.packets[i];
                     packet.add(column_x_[column], band.y[b], near_z_, hits.t[column],
                                hits.inside[column] != 0, row_out + column * 3);

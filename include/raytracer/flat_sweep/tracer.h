@@ -167,6 +167,11 @@ public:
             out[k][0] = to_byte(colours[k].x), out[k][1] = to_byte(colours[k].y),
             out[k][2] = to_byte(colours[k].z);
     }
+    // The bytes of every pixel that sees ellipsoid i where its colour is its ambient term
+    // alone (Kd = Ks = Kr = 0: no light nor mirror adds to it), else nullptr.
+    const std::uint8_t* flat_bytes(std::uint32_t i) const {
+        return surfaces_[i].flat ? surfaces_[i].bytes : nullptr;
+    }
     // The same as colours (before conversion to bytes).
     void eye_hit_colours(std::uint32_t i, int count, const Real* dx, const Real* dy, const Real* dz,
                          const Real* t, const bool* inside, TraceScratch<Real>& scratch, V* colours) const {
