@@ -135,7 +135,7 @@ int closest_lanes_differing(const Crowd<Real>& c, unsigned seed, int bundles, bo
     std::mt19937 g(seed);
     int differing = 0;
     for (int b = 0; b < bundles; ++b) {
-        const unsigned kind = mirrored ? 3 : g() % 4;
+        const unsigned kind = mirrored ? 3 : g() % 5;
         const rt::Ellipsoid<Real>& from = c.all[g() % c.all.size()];
         const V u0{Real(uniform(g, -1, 1)), Real(1), Real(0.5)};
         const V origin = kind == 0 ? V{}
@@ -150,6 +150,9 @@ int closest_lanes_differing(const Crowd<Real>& c, unsigned seed, int bundles, bo
             origins[k] = kind < 3 ? origin
                                   : on_surface(from, u0 + V{Real(uniform(g, -patch, patch)),
                                                             Real(uniform(g, -patch, patch)), Real(0)});
+            // The camera as 0 and as -0 in turn: one point, but not the same bits (the
+            // root solver may take a zero's sign, as in the room around the camera).
+            if (kind == 4) origins[k] = k % 2 ? V{} : V{-Real(0), -Real(0), -Real(0)};
             directions[k] = aim + V{Real(uniform(g, -spread, spread)), Real(uniform(g, -spread, spread)),
                                     Real(uniform(g, -spread, spread))} *
                                       Real(length(aim));
@@ -300,6 +303,23 @@ TEST(bvh_closest_bundles_match_brute_force) {
         CHECK_EQ(closest_lanes_differing(crowd<float>(seed, n), seed, 400), 0);
         CHECK_EQ(closest_lanes_differing(crowd<double>(seed, n), seed, 400), 0);
         CHECK_EQ(closest_lanes_differing(crowd<long double>(seed, n), seed, 200), 0);
+    }
+}
+
+// The same with a room centred on the camera, in which a ray from 0 and one from -0 start
+// at opposite zeros of its unit space, where the root solver may take a zero's sign.
+TEST(bvh_closest_bundles_from_0_and_minus_0_match_brute_force) {
+    for (unsigned seed = 1; seed <= 4; ++seed) {
+        const rt::SphereSpec room{"room", {0, 0, 0}, {7, 5, 9}, {}, 0, 0, 0, 0.5, 1, 0};
+        Crowd<float> f = crowd<float>(seed, 100);
+        f.all.insert(f.all.begin(), rt::make_ellipsoid<float>(room));
+        CHECK_EQ(closest_lanes_differing(f, seed, 400), 0);
+        Crowd<double> d = crowd<double>(seed, 100);
+        d.all.insert(d.all.begin(), rt::make_ellipsoid<double>(room));
+        CHECK_EQ(closest_lanes_differing(d, seed, 400), 0);
+        Crowd<long double> l = crowd<long double>(seed, 100);
+        l.all.insert(l.all.begin(), rt::make_ellipsoid<long double>(room));
+        CHECK_EQ(closest_lanes_differing(l, seed, 200), 0);
     }
 }
 
