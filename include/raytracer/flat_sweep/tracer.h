@@ -155,12 +155,6 @@ public:
     void eye_hit_pixels(std::uint32_t i, int count, const Real* dx, const Real* dy, const Real* dz,
                         const Real* t, const bool* inside, TraceScratch<Real>& scratch,
                         std::uint8_t* const* out) const {
-        const Surface& surface = surfaces_[i];
-        if (surface.flat) {
-            for (int k = 0; k < count; ++k)
-                out[k][0] = surface.bytes[0], out[k][1] = surface.bytes[1], out[k][2] = surface.bytes[2];
-            return;
-        }
         V colours[kPacket];
         eye_hit_colours(i, count, dx, dy, dz, t, inside, scratch, colours);
         for (int k = 0; k < count; ++k)
