@@ -100,15 +100,31 @@ struct HitPacket {
         }
     }
 
-    // surface_point() on ellipsoid e, the colour its ambient term, and |c| for the
-    // self-shadow test (as the tree's tiles compute it). The way to the viewer only where
-    // a specular term may show (else unused, and so not computed).
+    // surface_point() on ellipsoid e without the way to the viewer, and the colour its
+    // ambient term: all that a packet needs where no light faces any lane (a light
+    // behind the ellipsoid, as in testImgPlane), or for its mirrored rays.
     void surface(const Ellipsoid<Real>& e, const Vec3<Real>& ambient) {
-        if (specular_is_zero(e))
-            surface<false>(e);
-        else
-            surface<true>(e);
+        const Vec3<Q> centre = Vec3<Q>::from(e.centre), scale_squared = Vec3<Q>::from(e.scale_squared);
+        for (int c = 0; c < N; c += kChunk) {
+            const SurfacePoint<Q> s =
+                surface_point(chunk(ox, oy, oz, c), chunk(dx, dy, dz, c), Q::load(t + c),
+                              lanes_from<kChunk>(inside, c), centre, scale_squared);
+            store(s.point, px, py, pz, c), store(s.normal, nx, ny, nz, c);
+            store(s.scaled_length, scaled_length, c);
+        }
         for (int k = 0; k < N; ++k) r[k] = ambient.x, g[k] = ambient.y, b[k] = ambient.z;
+    }
+
+    // What the lights' terms need besides: |c| for the self-shadow test (as the tree's
+    // tiles compute it), and the way to the viewer (surface_point()'s) where a specular
+    // term may show. Once a packet, when the first light faces some lane.
+    void facing_light(const Ellipsoid<Real>& e) {
+        const Vec3<Q> centre = Vec3<Q>::from(e.centre), scale = Vec3<Q>::from(e.scale);
+        const bool viewer = !specular_is_zero(e);
+        for (int c = 0; c < N; c += kChunk) {
+            if (viewer) store(normalize(-chunk(dx, dy, dz, c)), vx, vy, vz, c);
+            store(own_abs_c(chunk(px, py, pz, c), centre, scale), abs_c, c);
+        }
     }
 
     // light_ray() to the light at position; lit starts empty. False when no lane has
@@ -160,20 +176,6 @@ struct HitPacket {
     void add(int k, const Vec3<Real>& term) { r[k] += term.x, g[k] += term.y, b[k] += term.z; }
 
 private:
-    template <bool kViewer>
-    void surface(const Ellipsoid<Real>& e) {
-        const Vec3<Q> centre = Vec3<Q>::from(e.centre), scale = Vec3<Q>::from(e.scale);
-        const Vec3<Q> scale_squared = Vec3<Q>::from(e.scale_squared);
-        for (int c = 0; c < N; c += kChunk) {
-            const SurfacePoint<Q> s =
-                surface_point(chunk(ox, oy, oz, c), chunk(dx, dy, dz, c), Q::load(t + c),
-                              lanes_from<kChunk>(inside, c), centre, scale_squared);
-            store(s.point, px, py, pz, c), store(s.normal, nx, ny, nz, c);
-            store(s.scaled_length, scaled_length, c);
-            if (kViewer) store(s.to_viewer, vx, vy, vz, c);
-            store(own_abs_c(s.point, centre, scale), abs_c, c);
-        }
-    }
     static Vec3<Q> chunk(const Real* x, const Real* y, const Real* z, int c) {
         return {Q::load(x + c), Q::load(y + c), Q::load(z + c)};
     }
@@ -182,7 +184,7 @@ private:
         store(v.x, x, c), store(v.y, y, c), store(v.z, z, c);
     }
     // The surface of lanes [c, c + kChunk), its way to the viewer only where asked (and
-    // computed: surface()).
+    // computed: facing_light()).
     SurfacePoint<Q> surface_chunk(int c, bool viewer) const {
         SurfacePoint<Q> s;
         s.point = chunk(px, py, pz, c), s.normal = chunk(nx, ny, nz, c);

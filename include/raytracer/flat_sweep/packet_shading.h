@@ -165,7 +165,8 @@ void Tracer<Real>::hit_colours(std::uint32_t i, int count, const Real* ox, const
     p.surface(e, surface.ambient);
     if (!surface.no_lighting) {
         const auto finish = every_lane<HitPacket<Real, N>::kChunk>(finish_of(e));
-        const PacketPlace place = packet_place(p, i);
+        PacketPlace place;  // set with p.facing_light(), for the first light that faces a lane
+        bool facing = false;
         // The lights in batches: first each light's terms (independent chains of
         // square roots and divisions, which overlap), then the shadow rays, then the
         // sums in the order of the lights.
@@ -174,8 +175,13 @@ void Tracer<Real>::hit_colours(std::uint32_t i, int count, const Real* ox, const
         bool lit_any[kBatch];
         for (std::size_t first = 0; first < lights_.size(); first += kBatch) {
             const std::size_t size = std::min(kBatch, lights_.size() - first);
-            for (std::size_t b = 0; b < size; ++b)  // false: behind every ray's point
+            bool faces_any = false;
+            for (std::size_t b = 0; b < size; ++b) {  // false: behind every ray's point
                 lit_any[b] = p.light(lights_[first + b].position, batch[b]);
+                faces_any = faces_any || lit_any[b];
+            }
+            if (!faces_any) continue;
+            if (!facing) p.facing_light(e), place = packet_place(p, i), facing = true;
             // Per light, the ellipsoids that some segment from the packet's ball to it
             // may meet (also independent chains).
             std::uint64_t may_block[kBatch] = {};
