@@ -327,9 +327,17 @@ private:
 template <typename Real, int Width>
 template <typename EllipsoidOf>
 Bvh<Real, Width>::Bvh(std::size_t count, EllipsoidOf ellipsoid_of, unsigned threads) {
+    // The items, halves on two threads where the tree is (their fresh pages' first
+    // touch is most of it: random 10k read and prepared 9.0 -> 8.0 ms).
     std::vector<BuildItem<C>> items(count);
-    for (std::size_t i = 0; i < count; ++i)
-        items[i] = build_item<C>(ellipsoid_of(i), static_cast<std::uint32_t>(i));
+    auto make_items = [&](std::size_t first, std::size_t last) {
+        for (std::size_t i = first; i < last; ++i)
+            items[i] = build_item<C>(ellipsoid_of(i), static_cast<std::uint32_t>(i));
+    };
+    if (threads > 1 && count >= BinaryTreeBuilder<C>::kItemsPerThread)
+        run_beside([&] { make_items(count / 2, count); }, [&] { make_items(0, count / 2); });
+    else
+        make_items(0, count);
     const std::vector<BuildNode<C>> binary = BinaryTreeBuilder<C>().build(items, threads);
     index_.resize(items.size()), position_.resize(items.size());
     for (std::uint32_t k = 0; k < items.size(); ++k)

@@ -36,6 +36,7 @@ struct BuildBox {
 // subtree (bvh.h's guard), and the caller's index.
 template <typename C>
 struct BuildItem {
+    BuildItem() {}  // NOLINT: not zeroed, so that a list of them is first touched where each is set
     BuildBox<C> box;
     C centre[3];
     C guard;
