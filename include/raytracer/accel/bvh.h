@@ -327,14 +327,16 @@ private:
 template <typename Real, int Width>
 template <typename EllipsoidOf>
 Bvh<Real, Width>::Bvh(std::size_t count, EllipsoidOf ellipsoid_of, unsigned threads) {
-    // The items, halves on two threads where the tree is (their fresh pages' first
-    // touch is most of it: random 10k read and prepared 9.0 -> 8.0 ms).
+    // Large trees are prepared on two threads: the items, the ellipsoids in leaf order.
+    const bool two_threads = threads > 1 && count >= BinaryTreeBuilder<C>::kItemsPerThread;
+    // The items, halves on two threads (their fresh pages' first touch is most of it:
+    // random 10k read and prepared 9.0 -> 8.0 ms).
     std::vector<BuildItem<C>> items(count);
     auto make_items = [&](std::size_t first, std::size_t last) {
         for (std::size_t i = first; i < last; ++i)
             items[i] = build_item<C>(ellipsoid_of(i), static_cast<std::uint32_t>(i));
     };
-    if (threads > 1 && count >= BinaryTreeBuilder<C>::kItemsPerThread)
+    if (two_threads)
         run_beside([&] { make_items(count / 2, count); }, [&] { make_items(0, count / 2); });
     else
         make_items(0, count);
@@ -351,7 +353,7 @@ Bvh<Real, Width>::Bvh(std::size_t count, EllipsoidOf ellipsoid_of, unsigned thre
         for (const std::uint32_t i : index_) items_.push_back(ellipsoid_of(i));
     };
     auto collapse_tree = [&] { root_ = collapse<Width>(binary, nodes_); };
-    if (threads > 1 && count >= BinaryTreeBuilder<C>::kItemsPerThread)
+    if (two_threads)
         run_beside(in_leaf_order, collapse_tree);
     else
         in_leaf_order(), collapse_tree();
