@@ -44,9 +44,18 @@ RT_ALWAYS_INLINE T whole_power(T x, K k) {
         if ((k != K(k[0])) == 0) return whole_power(x, k[0]);
     }
     T result = T(1);
-    for (; any(k != K(0)); k = k >> 1) {
-        result = select((k & K(1)) != K(0), result * x, result);
-        x = x * x;
+    if constexpr (std::is_arithmetic_v<K>) {
+        // One exponent: a branch rather than a select, which GCC compiles for lanes
+        // into stores and loads of the product each turn.
+        for (; k != 0; k >>= 1) {
+            if ((k & 1) != 0) result = result * x;
+            x = x * x;
+        }
+    } else {
+        for (; any(k != K(0)); k = k >> 1) {
+            result = select((k & K(1)) != K(0), result * x, result);
+            x = x * x;
+        }
     }
     return result;
 }
