@@ -35,6 +35,7 @@ struct Pool {
     std::atomic<unsigned> numbered{0};  // each new helper takes the next number
     std::mutex wake_mutex;
     std::condition_variable wake;
+    bool retired = false;  // under wake_mutex: the helpers end (retire())
 #if RT_HELPERS_PINNED_START
     cpu_set_t process_cpus;
     bool have_process_cpus = false;
@@ -53,7 +54,8 @@ void serve(unsigned index) {
     for (;;) {
         {
             std::unique_lock<std::mutex> lock(p.wake_mutex);
-            p.wake.wait(lock, [&] { return (p.state.load() >> 1) != seen; });
+            p.wake.wait(lock, [&] { return p.retired || (p.state.load() >> 1) != seen; });
+            if (p.retired) return;
         }
         // Entering before reading the state pairs with finish(), which closes before
         // reading inside (both sequentially consistent): either finish() sees this
@@ -124,6 +126,13 @@ unsigned HelperPool::Job::start(unsigned helpers, Body body, void* context) {
     if (helpers == 0) return 0;
     Pool& p = pool();
     if (!p.job_mutex.try_lock()) return 0;  // another render has the helpers
+    {
+        const std::lock_guard<std::mutex> lock(p.wake_mutex);
+        if (p.retired) {
+            p.job_mutex.unlock();
+            return 0;
+        }
+    }
     started_ = true;
 #if RT_HELPERS_PINNED_START
     if (p.threads == 0) p.have_process_cpus = process_cpus(p.process_cpus);
@@ -149,6 +158,15 @@ void HelperPool::Job::finish() {
     while (p.inside.load() != 0) std::this_thread::yield();
     started_ = false;
     p.job_mutex.unlock();
+}
+
+void HelperPool::retire() {
+    Pool& p = pool();
+    {
+        const std::lock_guard<std::mutex> lock(p.wake_mutex);
+        p.retired = true;
+    }
+    p.wake.notify_all();
 }
 
 bool HelperPool::starts_on_idle_core() { return RT_HELPERS_PINNED_START != 0; }

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "raytracer/command_line.h"
+#include "raytracer/helper_pool.h"
 #include "raytracer/interrupts.h"
 #include "raytracer/output_policy.h"
 #include "raytracer/parser.h"
@@ -110,6 +111,7 @@ int render(const rt::CommandLine& line, const rt::Scene& scene) {
             (line.progress == rt::CommandLine::Progress::WhenTerminal && rt::stderr_is_terminal());
         rt::ProgressSink sink(writer, scene.rows, progress);
         rt::render_to<double>(scene, sink, line.threads);
+        rt::HelperPool::retire();  // the last job of this process
         sink.finish();
         error = writer.commit();
     }

@@ -1,8 +1,9 @@
 // The helper pool's promises (helper_pool.h): every helper a job asks for may take
 // part; none is inside the job's body once finish() returns, and none enters it after;
-// one job at a time; the pool is reused by later jobs of any size.
+// one job at a time; the pool is reused by later jobs of any size; retire() ends it.
 #include <atomic>
 #include <chrono>
+#include <filesystem>
 #include <thread>
 #include <vector>
 
@@ -93,4 +94,33 @@ TEST(one_job_at_a_time) {
     CHECK_EQ(c.start(1, body, &second), 1U);  // free again
     c.finish();
     CHECK_EQ(c.start(0, body, &second), 0U);  // nothing asked, nothing started
+}
+
+// Last in this file: retire() is for the rest of the process.
+TEST(retired_helpers_end_and_later_jobs_run_alone) {
+    Record r(3, 1000);
+    {
+        rt::HelperPool::Job job;
+        CHECK_EQ(job.start(3, body, &r), 3U);
+        while (r.work++ < r.units) std::this_thread::yield();
+    }
+    rt::HelperPool::retire();
+#ifdef __linux__
+    // Each helper wakes and exits: the process is back to its one thread.
+    auto threads = [] {
+        int count = 0;
+        for (const auto& entry : std::filesystem::directory_iterator("/proc/self/task"))
+            count += !entry.path().empty();
+        return count;
+    };
+    const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+    while (threads() > 1 && std::chrono::steady_clock::now() < until)
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    CHECK_EQ(threads(), 1);
+#endif
+    Record later(2, 0);
+    rt::HelperPool::Job job;
+    CHECK_EQ(job.start(2, body, &later), 0U);  // the caller does it all
+    job.finish();
+    CHECK_EQ(later.calls[0].load() + later.calls[1].load(), 0);
 }
