@@ -365,7 +365,6 @@ std::string PendingFile::commit() {
         temporary_.clear();  // it is the target now
     }
     discard();
-    open_ = false;
     return error;
 }
 

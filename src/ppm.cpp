@@ -62,8 +62,6 @@ std::string save_imageP3(int width, int height, const char* file_name, const uns
     return file.commit();
 }
 
-std::string check_writable(const char* file_name) { return PendingFile(file_name).error(); }
-
 bool read_ppm(const std::string& file_name, Image& image, std::string& error) {
     std::ifstream in(fs::u8path(file_name), std::ios::binary);
     if (!in) {

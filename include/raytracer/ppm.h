@@ -35,10 +35,6 @@ std::string save_imageP6(PendingFile& file, int width, int height, const unsigne
 std::string save_imageP6(int width, int height, const char* file_name, const unsigned char* pixels);
 std::string save_imageP3(int width, int height, const char* file_name, const unsigned char* pixels);
 
-// Checks, before a long render, that save_imageP6 will be able to create file_name:
-// creates and removes a temporary file beside it. Same return convention.
-std::string check_writable(const char* file_name);
-
 // Reads a binary P6 file with maxval 255 (comments allowed in the header). Returns
 // false and says why in error when the file cannot be read or is not such a file.
 bool read_ppm(const std::string& file_name, Image& image, std::string& error);

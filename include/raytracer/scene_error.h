@@ -14,9 +14,7 @@ class SceneError : public std::runtime_error {
 public:
     // line 0 means the error is about the file as a whole (no line to point at).
     SceneError(const std::string& file, int line, const std::string& what)
-        : std::runtime_error(format(file, line, what)), line_(line) {}
-
-    int line() const { return line_; }
+        : std::runtime_error(format(file, line, what)) {}
 
 private:
     static std::string format(const std::string& file, int line, const std::string& what) {
@@ -24,7 +22,6 @@ private:
         if (line > 0) text += ":" + std::to_string(line);
         return text + ": error: " + what;
     }
-    int line_;
 };
 
 }  // namespace rt

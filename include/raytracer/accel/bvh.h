@@ -33,14 +33,12 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
-#include <utility>
 #include <vector>
 
 #include "raytracer/accel/bvh_build.h"
 #include "raytracer/accel/cleared_lanes.h"
 #include "raytracer/accel/slab_rays.h"
 #include "raytracer/bit_scan.h"
-#include "raytracer/compiler.h"
 #include "raytracer/reference/ellipsoid.h"
 #include "raytracer/reference/spec_rules.h"
 #include "raytracer/scene_precision.h"

@@ -18,8 +18,6 @@
 #include <cstdint>
 #include <vector>
 
-#include "raytracer/vec3.h"
-
 namespace rt {
 
 // A bounding sphere, in double (or wider) precision.

@@ -15,7 +15,6 @@
 // and what each mirrored ray hits is Tracer::nearest_hits()'s (packet_shading.h).
 #pragma once
 
-#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <type_traits>

@@ -24,8 +24,6 @@
 
 #include <cmath>
 
-#include "raytracer/compiler.h"
-
 namespace rt {
 
 template <typename C>

@@ -24,7 +24,6 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
-#include <type_traits>
 #include <vector>
 
 #include "raytracer/compiler.h"
@@ -138,28 +137,7 @@ public:
         return compact(cull, out);
     }
 
-    // prepare() and candidates() in one pass, for a ray whose origin no other ray shares
-    // (a reflected ray): the same operations, without storing the origin's terms.
-    std::size_t candidates(const Vec3<Real>& origin, const Vec3<Real>& direction, std::uint32_t* out,
-                           C* cull) const {
-        const C ox = C(origin.x), oy = C(origin.y), oz = C(origin.z);
-        const C dx = C(direction.x), dy = C(direction.y), dz = C(direction.z);
-        const C dd = dx * dx + dy * dy + dz * dz;
-        const std::size_t n = size();
-        const C *cx = cx_.data(), *cy = cy_.data(), *cz = cz_.data();
-        const C *radius2 = radius2_.data(), *guard2 = guard2_.data();
-        for (std::size_t i = 0; i < n; ++i) {
-            const C px = ox - cx[i], py = oy - cy[i], pz = oz - cz[i];
-            const C p2 = px * px + py * py + pz * pz;
-            const C c = p2 - radius2[i];
-            const C in_reach = p2 > radius2[i] && p2 <= guard2[i] ? C(1) : C(0);
-            const C b = px * dx + py * dy + pz * dz;
-            cull[i] = in_reach * ((b > 0 ? C(1) : C(0)) + (b * b < dd * c ? C(1) : C(0)));
-        }
-        return compact(cull, out);
-    }
-
-    // candidates(origin, direction) for N rays at once, ray k from (ox, oy, oz)[k] along
+    // prepare() and candidates() for N rays at once, ray k from (ox, oy, oz)[k] along
     // (dx, dy, dz)[k]: writes to listed, in increasing order, the ellipsoids that are a
     // candidate of some ray, and returns how many; for each such i, bit k of lanes[i] is
     // set where it is a candidate of ray k. The same operations per lane, as loops over

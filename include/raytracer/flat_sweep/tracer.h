@@ -3,10 +3,8 @@
 #pragma once
 
 #include <algorithm>
-#include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <limits>
 #include <type_traits>
 #include <vector>
 
@@ -23,7 +21,6 @@
 #include "raytracer/reference/ellipsoid.h"
 #include "raytracer/reference/spec_rules.h"
 #include "raytracer/scene.h"
-#include "raytracer/scene_precision.h"
 #include "raytracer/vec3.h"
 
 namespace rt {

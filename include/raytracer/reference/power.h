@@ -15,7 +15,6 @@
 // or above kMaxWholeExponent still go to std::pow (the error bound grows with n).
 #pragma once
 
-#include <cmath>
 #include <cstdint>
 #include <type_traits>
 
