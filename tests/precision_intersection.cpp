@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "check.h"
-#include "raytracer/flat_sweep/tracer.h"
+#include "raytracer/reference/brute_force.h"
 #include "raytracer/reference/ellipsoid.h"
 #include "raytracer/reference/spec_rules.h"
 
@@ -111,17 +111,12 @@ TEST(the_root_at_a_rays_origin_is_near_zero) {
 
 // Entering or leaving is decided by which root was taken: from inside, the far one.
 TEST(a_ray_from_inside_sees_the_inner_surface) {
-    rt::Scene scene;
-    rt::SphereSpec room;
-    room.centre = {0, 0, 0};
-    room.scale = {6, 4, 9};
-    scene.spheres.push_back(room);
-    const rt::Tracer<double> tracer(scene);
-    const auto hit = tracer.nearest_hit({0, 0, 0}, {0, 0, -1}, 1.0);
-    CHECK(hit.ellipsoid != nullptr);
+    const rt::BruteForce<double> tracer({ellipsoid<double>({0, 0, 0}, {6, 4, 9})});
+    const auto hit = tracer.closest({0, 0, 0}, {0, 0, -1}, 1.0);
+    CHECK(hit.found());
     CHECK(hit.inside);
     CHECK_NEAR(hit.t, 9.0, 1e-12);
-    const auto outside = tracer.nearest_hit({0, 0, 20}, {0, 0, -1}, 1.0);
+    const auto outside = tracer.closest({0, 0, 20}, {0, 0, -1}, 1.0);
     CHECK(!outside.inside);
     CHECK_NEAR(outside.t, 11.0, 1e-12);
 }

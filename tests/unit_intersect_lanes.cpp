@@ -1,8 +1,9 @@
 // The nearest hits of a packet's mirrored rays found for all lanes at once
 // (Tracer::nearest_hits(), with intersect_lanes() and SphereBounds::candidate_lanes())
-// against the scalar search they replace: intersect_lanes() must give every lane
-// intersect()'s roots bit for bit, and nearest_hits() every lane nearest_hit()'s
-// ellipsoid, root (bit for bit) and inside flag, in float, double and long double; for
+// against the reference's search, one ray against every ellipsoid (BruteForce::closest()):
+// intersect_lanes() must give every lane intersect()'s roots bit for bit, and
+// nearest_hits() every lane the reference's ellipsoid, root (bit for bit) and inside
+// flag, in float, double and long double; for
 // random rays, rays from points on the surfaces (as reflected rays start), rays near
 // tangency (the allowance of intersect_mapped()) and grazing rays from the surface
 // (q == 0), where a lane that rounds or compares differently would show.
@@ -17,6 +18,7 @@
 #include "random_checks.h"
 #include "raytracer/accel/intersect_lanes.h"
 #include "raytracer/flat_sweep/tracer.h"
+#include "raytracer/reference/brute_force.h"
 #include "raytracer/reference/ellipsoid.h"
 #include "raytracer/scene.h"
 
@@ -123,7 +125,7 @@ void roots_match() {
 }
 
 // A scene of random ellipsoids (a room among them) and lights, and rays from points on
-// their surfaces: every lane's nearest hit as Tracer::nearest_hit() finds it.
+// their surfaces: every lane's nearest hit as the reference finds it.
 template <typename Real>
 long long differing_hits(unsigned seed, long long& found, long long& inside) {
     std::mt19937 g(seed);
@@ -135,6 +137,7 @@ long long differing_hits(unsigned seed, long long& found, long long& inside) {
     scene.lights.push_back(light);
     const rt::Tracer<Real> tracer(scene);
     rt::TraceScratch<Real> scratch = tracer.make_scratch();
+    const rt::BruteForce<Real> reference(rt::make_ellipsoids<Real>(scene));
     long long differing = 0;
     for (int round = 0; round < 1500; ++round) {
         Real ox[N], oy[N], oz[N], dx[N], dy[N], dz[N], t[N];
@@ -149,8 +152,8 @@ long long differing_hits(unsigned seed, long long& found, long long& inside) {
             const rt::Ellipsoid<Real>& e = tracer.ellipsoid(g() % count);
             rays[k] = random_ray(g, e);
             if (g() % 2) {  // from a hit point, as a reflected ray starts
-                const auto hit = tracer.nearest_hit(rays[k].origin, rays[k].direction, Real(rt::kEyeRayMinT));
-                if (hit.ellipsoid != nullptr) {
+                const auto hit = reference.closest(rays[k].origin, rays[k].direction, rt::kEyeRayMinT);
+                if (hit.found()) {
                     rays[k].origin = rays[k].origin + rays[k].direction * hit.t;
                     rays[k].direction = {Real(uniform(g, -9, 9)), Real(uniform(g, -9, 9)),
                                          Real(uniform(g, -9, 9))};
@@ -172,15 +175,14 @@ long long differing_hits(unsigned seed, long long& found, long long& inside) {
         const Real min_t = Real(rt::kReflectedRayMinT);
         tracer.nearest_hits(ox, oy, oz, dx, dy, dz, min_t, scratch, index, t, in);
         for (int k = 0; k < N; ++k) {
-            const auto hit = tracer.nearest_hit(rays[k].origin, rays[k].direction, min_t);
-            if (hit.ellipsoid == nullptr) {
+            const auto hit = reference.closest(rays[k].origin, rays[k].direction, min_t);
+            if (!hit.found()) {
                 differing += index[k] != rt::TraceScratch<Real>::kNone;
                 continue;
             }
             ++found;
             inside += hit.inside;
-            const auto i = static_cast<std::uint32_t>(hit.ellipsoid - &tracer.ellipsoid(0));
-            differing += index[k] != i || !same(t[k], hit.t) || in[k] != hit.inside;
+            differing += index[k] != hit.ellipsoid || !same(t[k], hit.t) || in[k] != hit.inside;
         }
     }
     return differing;
@@ -205,7 +207,7 @@ TEST(lane_roots_are_intersect_roots) {
     roots_match<long double>();
 }
 
-TEST(lane_nearest_hits_are_scalar_nearest_hits) {
+TEST(lane_nearest_hits_are_the_references) {
     hits_match<float>();
     hits_match<double>();
     hits_match<long double>();

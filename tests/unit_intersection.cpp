@@ -1,6 +1,6 @@
 // Ray/ellipsoid intersection: both roots, the near-plane cut, tangency, misses.
 #include "check.h"
-#include "raytracer/flat_sweep/tracer.h"
+#include "raytracer/reference/brute_force.h"
 #include "raytracer/reference/ellipsoid.h"
 
 namespace {
@@ -14,13 +14,9 @@ rt::Ellipsoid<double> ellipsoid(V centre, V scale) {
     return rt::make_ellipsoid<double>(s);
 }
 
-rt::Scene scene_with(V centre, V scale) {
-    rt::Scene scene;
-    rt::SphereSpec s;
-    s.centre = centre;
-    s.scale = scale;
-    scene.spheres.push_back(s);
-    return scene;
+// The reference's queries (brute_force.h) over the ellipsoid of this centre and scale.
+rt::BruteForce<double> scene_with(V centre, V scale) {
+    return rt::BruteForce<double>({ellipsoid(centre, scale)});
 }
 
 }  // namespace
@@ -91,45 +87,48 @@ TEST(normal_is_position_over_scale_squared) {
 TEST(the_near_plane_cuts_ellipsoids_open) {
     // A sphere of radius 0.5 centred on the near plane: the eye ray meets it at t = 0.5
     // (in front of the near plane, cut away) and t = 1.5, its inner surface.
-    const rt::Tracer<double> tracer(scene_with({0, 0, -1}, {0.5, 0.5, 0.5}));
-    const auto hit = tracer.nearest_hit(V{}, V{0, 0, -1}, 1.0);
-    CHECK(hit.ellipsoid != nullptr);
+    const rt::BruteForce<double> tracer = scene_with({0, 0, -1}, {0.5, 0.5, 0.5});
+    const auto hit = tracer.closest(V{}, V{0, 0, -1}, 1.0);
+    CHECK(hit.found());
     CHECK_NEAR(hit.t, 1.5, 1e-15);
     CHECK(hit.inside);
     // Entirely between the eye and the near plane: not visible.
-    const rt::Tracer<double> before(scene_with({0, 0, -0.5}, {0.2, 0.2, 0.2}));
-    CHECK(before.nearest_hit(V{}, V{0, 0, -1}, 1.0).ellipsoid == nullptr);
+    const rt::BruteForce<double> before = scene_with({0, 0, -0.5}, {0.2, 0.2, 0.2});
+    CHECK(!before.closest(V{}, V{0, 0, -1}, 1.0).found());
     // Behind the eye: not visible.
-    const rt::Tracer<double> behind(scene_with({0, 0, 5}, {1, 1, 1}));
-    CHECK(behind.nearest_hit(V{}, V{0, 0, -1}, 1.0).ellipsoid == nullptr);
+    const rt::BruteForce<double> behind = scene_with({0, 0, 5}, {1, 1, 1});
+    CHECK(!behind.closest(V{}, V{0, 0, -1}, 1.0).found());
 }
 
 TEST(a_hit_exactly_on_the_near_plane_is_not_visible) {
     // keyIllum's rim pixels: s4 = (0,0,-1) scaled (0.25,0.25,0.5), pixel (240, 345)
     // of 600x600 meets it at exactly t = 1 (a 3-4-5 triangle) and t = 0.6.
-    const rt::Tracer<double> tracer(scene_with({0, 0, -1}, {0.25, 0.25, 0.5}));
+    const rt::BruteForce<double> tracer = scene_with({0, 0, -1}, {0.25, 0.25, 0.5});
     const double x = -1.0 + 2.0 * 240 / 600, y = 1.0 - 2.0 * 345 / 600;
-    CHECK(tracer.nearest_hit(V{}, V{x, y, -1}, 1.0).ellipsoid == nullptr);
+    CHECK(!tracer.closest(V{}, V{x, y, -1}, 1.0).found());
     // One pixel further in, the inner surface is visible.
     const double x2 = -1.0 + 2.0 * 241 / 600;
-    CHECK(tracer.nearest_hit(V{}, V{x2, y, -1}, 1.0).ellipsoid != nullptr);
+    CHECK(tracer.closest(V{}, V{x2, y, -1}, 1.0).found());
 }
 
 TEST(the_nearest_of_several_is_taken) {
-    rt::Scene scene = scene_with({0, 0, -10}, {1, 1, 1});
-    scene.spheres.push_back(scene.spheres[0]);
-    scene.spheres[1].centre = {0, 0, -5};
-    const rt::Tracer<double> tracer(scene);
-    const auto hit = tracer.nearest_hit(V{}, V{0, 0, -1}, 1.0);
+    const rt::BruteForce<double> tracer(
+        {ellipsoid({0, 0, -10}, {1, 1, 1}), ellipsoid({0, 0, -5}, {1, 1, 1})});
+    const auto hit = tracer.closest(V{}, V{0, 0, -1}, 1.0);
+    CHECK_EQ(hit.ellipsoid, 1U);
     CHECK_NEAR(hit.t, 4.0, 1e-15);
     CHECK(!hit.inside);
 }
 
 TEST(shadow_rays_count_hits_strictly_between_point_and_light) {
-    const rt::Tracer<double> tracer(scene_with({0, 0, -5}, {1, 1, 1}));
-    CHECK(tracer.in_shadow(V{0, 0, -10}, V{0, 0, 10}));  // blocker in between
-    CHECK(!tracer.in_shadow(V{0, 0, -10}, V{0, 0, 3}));  // light stops short of it
-    CHECK(!tracer.in_shadow(V{0, 0, -2}, V{0, 0, 2}));   // blocker behind the point
-    CHECK(tracer.in_shadow(V{0, 0, -6}, V{0, 0, 10}));   // the point's own shell blocks
-    CHECK(!tracer.in_shadow(V{0, 0, -6}, V{0, 0, 1}));   // a light inside lights the inside
+    const rt::BruteForce<double> tracer = scene_with({0, 0, -5}, {1, 1, 1});
+    auto in_shadow = [&](V point, V to_light) {
+        std::uint32_t blocker = rt::kNoBlocker;
+        return tracer.occluded(point, to_light, blocker);
+    };
+    CHECK(in_shadow(V{0, 0, -10}, V{0, 0, 10}));  // blocker in between
+    CHECK(!in_shadow(V{0, 0, -10}, V{0, 0, 3}));  // light stops short of it
+    CHECK(!in_shadow(V{0, 0, -2}, V{0, 0, 2}));   // blocker behind the point
+    CHECK(in_shadow(V{0, 0, -6}, V{0, 0, 10}));   // the point's own shell blocks
+    CHECK(!in_shadow(V{0, 0, -6}, V{0, 0, 1}));   // a light inside lights the inside
 }

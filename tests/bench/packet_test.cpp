@@ -46,6 +46,7 @@ long long differing_bytes(const rt::Scene& scene, int packet, int stride) {
     const rt::Whitted<Real, rt::BruteForce<Real>> reference(
         scene, rt::BruteForce<Real>(rt::make_ellipsoids<Real>(scene)));
     auto reference_scratch = reference.make_scratch();
+    const rt::BruteForce<Real> plain(rt::make_ellipsoids<Real>(scene));
     long long differing = 0;
     const Real left = Real(scene.left), right = Real(scene.right), top = Real(scene.top),
                bottom = Real(scene.bottom);
@@ -55,10 +56,9 @@ long long differing_bytes(const rt::Scene& scene, int packet, int stride) {
         for (int c = 0; c < scene.columns; ++c) {
             const Real x = left + (right - left) * Real(c) / Real(scene.columns);
             const V d{x, y, -Real(scene.near_plane)};
-            const auto hit = tracer.nearest_hit(V{}, d, Real(rt::kEyeRayMinT));
-            if (hit.ellipsoid == nullptr) continue;
-            const auto i = static_cast<std::uint32_t>(hit.ellipsoid - &tracer.ellipsoid(0));
-            hits.push_back({i, d.x, d.y, d.z, hit.t, hit.inside, c});
+            const auto hit = plain.closest(V{}, d, rt::kEyeRayMinT);
+            if (!hit.found()) continue;
+            hits.push_back({hit.ellipsoid, d.x, d.y, d.z, hit.t, hit.inside, c});
         }
         std::vector<std::uint8_t> one(std::size_t(scene.columns) * 3), many(one.size());
         std::vector<V> one_colour(std::size_t(scene.columns)), many_colour(one_colour.size());

@@ -10,7 +10,8 @@
 //
 // Bit-identity: the loop runs the one root solver, unit_sphere_roots(), on the inputs
 // intersect_mapped() gives it (o' and c of mapped_origin(), d' = direction / s), and the
-// merge is Tracer::closest(): ellipsoids in increasing order, inside = !(near > min_t),
+// merge is the reference's (BruteForce::closest(), visible_root()): ellipsoids in
+// increasing order, inside = !(near > min_t),
 // t = inside ? far : near, accepted when t > min_t and (no hit yet or t < best t).
 // d'.y = y / s.y and d'.z = near_z / s.z are computed once per row, d'.x = x / s.x once
 // per column: the same operations on the same values.
@@ -82,7 +83,7 @@ public:
 
     // Intersects the eye rays (column_x[c], y, near_z) of columns [first, last] with
     // ellipsoid i and keeps each column's nearest hit. Called for a row's ellipsoids in
-    // increasing order, as Tracer::closest() tries them.
+    // increasing order, as BruteForce::closest() tries them.
     void intersect(EyeRowHits<Real>& hits, std::uint32_t i, int first, int last, const Real* column_x, Real y,
                    Real near_z) const {
         const Terms& e = terms_[i];
@@ -123,7 +124,7 @@ private:
             RT_VECTOR_LOOP
             for (int k = 0; k < n; ++k) {
                 const int c = c0 + k;
-                // Tracer::closest(); a NaN best t (no hit yet) makes !(t >= best t) true, and
+                // BruteForce::closest(); a NaN best t (no hit yet) makes !(t >= best t) true, and
                 // an accepted t is never NaN, so that test is t < best t otherwise.
                 const bool inside = !(near[k] > min_t);
                 const Real t = inside ? far[k] : near[k];

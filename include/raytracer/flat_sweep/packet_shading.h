@@ -20,15 +20,15 @@
 namespace rt {
 
 // The nearest hits of kPacket rays with t > min_t, ray k from (ox, oy, oz)[k] along
-// (dx, dy, dz)[k], as nearest_hit() finds them (bounds_.candidates() from the ray's
-// origin, then closest()): index[k] is the ellipsoid (kNone for none), t[k] its root,
+// (dx, dy, dz)[k], as the reference finds them (BruteForce::closest(), every ellipsoid in
+// increasing order): index[k] is the ellipsoid (kNone for none), t[k] its root,
 // inside[k] whether the far root was taken.
 //
 // WHY: one culling pass over the bounding spheres for all rays
 // (SphereBounds::candidate_lanes()), and each ellipsoid some ray may hit intersected
 // for all lanes at once (intersect_lanes()), in vector instructions. Each lane gets
 // the roots intersect() gives, for exactly the ellipsoids its own culling leaves,
-// taken in increasing order by closest()'s rule: the same hit, t and flag.
+// taken in increasing order by the reference's rule: the same hit, t and flag.
 template <typename Real>
 template <int N>
 void Tracer<Real>::nearest_hits(const Real* ox, const Real* oy, const Real* oz, const Real* dx,
@@ -39,7 +39,7 @@ void Tracer<Real>::nearest_hits(const Real* ox, const Real* oy, const Real* oz, 
     const std::uint32_t* some_ray = scratch.candidates.data();
     const std::size_t count = bounds_.template candidate_lanes<N>(
         ox, oy, oz, dx, dy, dz, lanes, scratch.candidates.data(), scratch.cull.data());
-    min_t = visible_beyond(min_t);  // as in closest()
+    min_t = visible_beyond(min_t);  // as in BruteForce::closest()
     Real best[N], found[N], far_root[N];
     for (int k = 0; k < N; ++k)
         best[k] = 0, found[k] = 0, far_root[k] = 0, index[k] = TraceScratch<Real>::kNone;
@@ -50,7 +50,7 @@ void Tracer<Real>::nearest_hits(const Real* ox, const Real* oy, const Real* oz, 
         intersect_lanes<N>(ellipsoids_[i], ox, oy, oz, dx, dy, dz, hit, near, far);
         RT_VECTOR_LOOP
         for (int k = 0; k < N; ++k) listed[k] = (set & kLaneBits<N>.bit[k]) != 0 ? Real(1) : Real(0);
-        // closest(): inside = !(near > min_t); t = inside ? far : near; taken when
+        // visible_root(): inside = !(near > min_t); t = inside ? far : near; taken when
         // t > min_t and nothing nearer was found. (Products of 0/1 masks rather than
         // && and bools, which keep GCC's loop scalar.)
         RT_VECTOR_LOOP

@@ -123,29 +123,14 @@ public:
         }
     }
 
-    // Writes to out, in increasing order, the ellipsoids that the ray origin + t direction
-    // (t > 0) may hit; returns how many. out and cull must hold size() entries.
-    std::size_t candidates(const OriginTerms& t, const Vec3<Real>& direction, std::uint32_t* out,
-                           C* cull) const {
-        const C dx = C(direction.x), dy = C(direction.y), dz = C(direction.z);
-        const C dd = dx * dx + dy * dy + dz * dz;
-        const std::size_t n = size();
-        for (std::size_t i = 0; i < n; ++i) {
-            const C b = t.px[i] * dx + t.py[i] * dy + t.pz[i] * dz;
-            cull[i] = culled(t, b, dd, i);
-        }
-        return compact(cull, out);
-    }
-
-    // prepare() and candidates() for N rays at once, ray k from (ox, oy, oz)[k] along
-    // (dx, dy, dz)[k]: writes to listed, in increasing order, the ellipsoids that are a
-    // candidate of some ray, and returns how many; for each such i, bit k of lanes[i] is
-    // set where it is a candidate of ray k. The same operations per lane, as loops over
-    // the lanes that GCC vectorises (one pass over the ellipsoids for all rays instead of
-    // one per ray), after the spheres that no ray can meet are ruled out for the whole
-    // packet (RayCone: such a sphere's ellipsoid gives no ray a root, by the inflation
-    // argument above, so the nearest hits stay the same). lanes, listed, scratch:
-    // size() entries.
+    // For N rays, ray k from (ox, oy, oz)[k] along (dx, dy, dz)[k] (t > 0): writes to
+    // listed, in increasing order, the ellipsoids that some ray may hit (the candidates),
+    // and returns how many; for each such i, bit k of lanes[i] is set where ray k may hit
+    // it. Loops over the lanes that GCC vectorises (one pass over the ellipsoids for all
+    // rays instead of one per ray), after the spheres that no ray can meet are ruled out
+    // for the whole packet (RayCone: such a sphere's ellipsoid gives no ray a root, by
+    // the inflation argument above, so the nearest hits stay the same). lanes, listed,
+    // scratch: size() entries.
     template <int N>
     std::size_t candidate_lanes(const Real* ox, const Real* oy, const Real* oz, const Real* dx,
                                 const Real* dy, const Real* dz, std::uint32_t* lanes, std::uint32_t* listed,

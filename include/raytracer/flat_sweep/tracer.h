@@ -130,13 +130,6 @@ public:
         return screen_bounds(scene, bounds_.spheres(), usable);
     }
 
-    // The nearest surface along origin + t direction with t > min_t.
-    struct Hit {
-        const Ellipsoid<Real>* ellipsoid = nullptr;
-        Real t = 0;
-        bool inside = false;  // the far root was taken: the ray sees the inner surface
-    };
-
     // Up to kPacket eye-ray hits on ellipsoid i at once: pixel k < count looks along
     // (dx[k], dy[k], dz[k]) and meets the ellipsoid first at t[k] (inside[k]: the far
     // root); its three bytes go to out[k], those the reference gives the pixel
@@ -177,7 +170,7 @@ public:
     // (mapped_origin()), for eye rays intersected by the caller.
     const Ellipsoid<Real>& ellipsoid(std::size_t i) const { return ellipsoids_[i]; }
     const MappedOrigin<Real>& eye_origin(std::size_t i) const { return eye_origin_[i]; }
-    // Whether an eye ray's root t counts as a hit beyond the near plane: closest()'s test
+    // Whether an eye ray's root t counts as a hit beyond the near plane: the reference's test
     // (a root within 8 scene ulps of t = 1 is on the plane, see there).
     static Real eye_min_t() { return visible_beyond(Real(kEyeRayMinT)); }
 
@@ -194,21 +187,7 @@ public:
     }
 
     const V& background() const { return background_; }
-    // Only the ellipsoids the bounding spheres cannot rule out are intersected.
-    Hit nearest_hit(const V& origin, const typename SphereBounds<Real>::OriginTerms& terms,
-                    const V& direction, Real min_t, TraceScratch<Real>& scratch) const {
-        const std::uint32_t* first = scratch.candidates.data();
-        const std::uint32_t* last =
-            first + bounds_.candidates(terms, direction, scratch.candidates.data(), scratch.cull.data());
-        return closest(first, last, origin, direction, min_t);
-    }
-    Hit nearest_hit(const V& origin, const V& direction, Real min_t) const {
-        TraceScratch<Real> scratch = make_scratch();
-        bounds_.prepare(origin, scratch.origin);
-        return nearest_hit(origin, scratch.origin, direction, min_t, scratch);
-    }
-
-    // The nearest hits of N rays at once, each as nearest_hit() finds it
+    // The nearest hits of N rays at once, each as the reference's closest() finds it
     // (packet_shading.h).
     template <int N = kPacket>
     void nearest_hits(const Real* ox, const Real* oy, const Real* oz, const Real* dx, const Real* dy,
@@ -250,14 +229,6 @@ public:
         return false;
     }
 
-    // The same without culling or memory: every ellipsoid is tried.
-    // (Kept for tests and callers that have no scratch.)
-    bool in_shadow(const V& point, const V& to_light) const {
-        for (const Ellipsoid<Real>& e : ellipsoids_)
-            if (blocks(e, point, to_light)) return true;
-        return false;
-    }
-
 private:
     // Cells per cube-face side of the light buffers (direction_grid.h).
     static constexpr int kGridCells = 16;
@@ -296,30 +267,6 @@ private:
         *end = first + bounds_.shadow_candidates(scratch.origin, to_light, light_index,
                                                  scratch.candidates.data(), scratch.cull.data());
         return first;
-    }
-
-    // The nearest hit among the ellipsoids [first, last), given in increasing order so
-    // that ties resolve exactly as in a loop over all of them.
-    Hit closest(const std::uint32_t* first, const std::uint32_t* last, const V& origin, const V& direction,
-                Real min_t) const {
-        return closest(first, last, min_t,
-                       [&](std::uint32_t i) { return intersect(ellipsoids_[i], origin, direction); });
-    }
-    // The same with intersect_of(i) giving the roots of ellipsoid i.
-    template <typename Intersect>
-    Hit closest(const std::uint32_t* first, const std::uint32_t* last, Real min_t,
-                Intersect intersect_of) const {
-        const Real beyond = visible_beyond(min_t);  // spec_rules.h
-        Hit best;
-        for (; first != last; ++first) {
-            const Ellipsoid<Real>& e = ellipsoids_[*first];
-            Real t;
-            bool inside;
-            if (visible_root(intersect_of(*first), beyond, t, inside) &&
-                (best.ellipsoid == nullptr || t < best.t))
-                best = {&e, t, inside};
-        }
-        return best;
     }
 
     // Whether ellipsoid i blocks the shadow ray; intersect() decides only where the
