@@ -7,6 +7,7 @@
 #include <limits>
 #include <string>
 
+#include "image_diff.h"
 #include "raytracer/image.h"
 #include "raytracer/render.h"
 #include "raytracer/scene.h"
@@ -38,7 +39,7 @@ struct Error {
 
 inline Error error_of(const rt::Image& image, const rt::Image& reference) {
     Error e;
-    const rt::ImageDiff diff = rt::compare_images(image, reference);
+    const ImageDiff diff = compare_images(image, reference);
     e.pixels = static_cast<long long>(reference.width) * reference.height;
     if (!diff.same_size) {
         e.differing_pixels = e.pixels;

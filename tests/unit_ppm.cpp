@@ -7,6 +7,7 @@
 #include <string>
 
 #include "check.h"
+#include "image_diff.h"
 #include "raytracer/image.h"
 #include "raytracer/ppm.h"
 
@@ -146,14 +147,14 @@ TEST(read_ppm_refuses_what_is_not_a_p6_image) {
 TEST(compare_counts_pixels_and_the_largest_difference) {
     const rt::Image a{2, 1, {10, 20, 30, 40, 50, 60}};
     rt::Image b{2, 1, {10, 20, 30, 40, 50, 60}};
-    CHECK_EQ(rt::compare_images(a, b).differing_pixels, 0);
+    CHECK_EQ(compare_images(a, b).differing_pixels, 0);
     b.rgb[1] = 23;  // pixel 0, green, 3 levels
     b.rgb[5] = 59;  // pixel 1, blue, 1 level
-    const rt::ImageDiff d = rt::compare_images(a, b);
+    const ImageDiff d = compare_images(a, b);
     CHECK(d.same_size);
     CHECK_EQ(d.differing_pixels, 2);
     CHECK_EQ(d.largest_difference, 3);
-    CHECK(!rt::compare_images(a, rt::Image{1, 2, {10, 20, 30, 40, 50, 60}}).same_size);
+    CHECK(!compare_images(a, rt::Image{1, 2, {10, 20, 30, 40, 50, 60}}).same_size);
 }
 
 // P6Writer: the header at once, rows as they come; an image whose rows did not all come

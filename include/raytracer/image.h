@@ -1,5 +1,4 @@
-// An 8-bit RGB image, rows from the top, and the pixel-by-pixel comparison that the
-// grader and the golden-image tests share.
+// An 8-bit RGB image, rows from the top, and a colour channel's byte (to_byte()).
 #pragma once
 
 #include <cstdint>
@@ -41,14 +40,6 @@ struct Image {
     int width = 0, height = 0;
     Bytes rgb;  // width * height * 3 bytes, top-left pixel first
 };
-
-struct ImageDiff {
-    bool same_size = false;
-    long long differing_pixels = 0;  // pixels where any channel differs
-    int largest_difference = 0;      // the largest channel difference, in levels
-};
-
-ImageDiff compare_images(const Image& a, const Image& b);
 
 // SPEC section 6: clamp to [0, 1], scale by 255, truncate. NaN gives 0.
 //

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "check.h"
+#include "image_diff.h"
 #include "random_checks.h"
 #include "raytracer/accel/bvh.h"
 #include "raytracer/flat_sweep/render_flat_sweep.h"
@@ -116,7 +117,7 @@ bool renders_as_plain(const std::string& name, const rt::Scene& s, unsigned thre
     sink.image.width = s.columns, sink.image.height = s.rows;
     rt::render_whitted_to<Real>(s, sink, threads);
     const rt::Image& fast = sink.image;
-    const rt::ImageDiff d = rt::compare_images(fast, plain);
+    const ImageDiff d = compare_images(fast, plain);
     if (!d.same_size || d.differing_pixels != 0)
         std::cerr << name << " (" << sizeof(Real) << "-byte reals): " << d.differing_pixels
                   << " pixels differ from the reference\n";

@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "bench_process.h"
+#include "image_diff.h"
 #include "raytracer/image.h"
 #include "raytracer/ppm.h"
 #include "scale_table.h"
@@ -166,7 +167,7 @@ void heavy_table(Bench& bench) {
     rt::Image a, b;
     std::string error;
     if (rt::read_ppm(h.image.string(), a, error) && rt::read_ppm(hb.image.string(), b, error)) {
-        const rt::ImageDiff d = rt::compare_images(a, b);
+        const ImageDiff d = compare_images(a, b);
         std::printf("  images: %lld pixels differ, by at most %d levels\n", d.differing_pixels,
                     d.largest_difference);
     } else {

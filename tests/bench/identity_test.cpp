@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "check.h"
+#include "image_diff.h"
 #include "raytracer/parser.h"
 #include "raytracer/render.h"
 #include "stress_scenes.h"
@@ -39,7 +40,7 @@ template <typename Real>
 bool same_as_plain(const std::string& name, const rt::Scene& s) {
     const rt::Image plain = rt::render<Real>(s, 1, false);
     const rt::Image fast = rt::render<Real>(s, 2, true);
-    const rt::ImageDiff d = rt::compare_images(fast, plain);
+    const ImageDiff d = compare_images(fast, plain);
     if (d.differing_pixels != 0)
         std::cerr << name << " (" << sizeof(Real) << "-byte reals): " << d.differing_pixels
                   << " pixels differ from the reference\n";

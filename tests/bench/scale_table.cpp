@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "bench_process.h"
+#include "image_diff.h"
 #include "raytracer/image.h"
 #include "raytracer/ppm.h"
 
@@ -55,7 +56,7 @@ std::string image_difference(const std::string& a, const std::string& b) {
     rt::Image x, y;
     std::string error;
     if (!rt::read_ppm(a, x, error) || !rt::read_ppm(b, y, error)) return "cannot compare: " + error;
-    const rt::ImageDiff d = rt::compare_images(x, y);
+    const ImageDiff d = compare_images(x, y);
     if (!d.same_size) return "sizes differ";
     if (d.differing_pixels == 0) return "";
     return std::to_string(d.differing_pixels) + " pixels differ, by up to " +

@@ -1,9 +1,19 @@
-// Pixel-by-pixel comparison of two images, shared by the grader and the tests.
+// How two images differ, pixel by pixel: the tests' and the benchmark's comparison of a
+// fast path's image with the reference's (the grader judges with its own pass rule,
+// src/grade/pass_rule.h).
+#pragma once
+
+#include <cstddef>
+
 #include "raytracer/image.h"
 
-namespace rt {
+struct ImageDiff {
+    bool same_size = false;
+    long long differing_pixels = 0;  // pixels where any channel differs
+    int largest_difference = 0;      // the largest channel difference, in levels
+};
 
-ImageDiff compare_images(const Image& a, const Image& b) {
+inline ImageDiff compare_images(const rt::Image& a, const rt::Image& b) {
     ImageDiff diff;
     diff.same_size = a.width == b.width && a.height == b.height && a.rgb.size() == b.rgb.size();
     if (!diff.same_size) return diff;
@@ -18,5 +28,3 @@ ImageDiff compare_images(const Image& a, const Image& b) {
     }
     return diff;
 }
-
-}  // namespace rt
