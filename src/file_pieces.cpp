@@ -53,11 +53,8 @@ bool read_in_pieces(std::FILE* in, std::size_t size, unsigned threads, char* byt
             if (!read_at(fd, first, last - first, bytes + first)) whole = false;
         }
     };
-    using ReadPieces = decltype(read_pieces);
     HelperPool::Job helpers;
-    helpers.start(
-        static_cast<unsigned>(pieces) - 1,
-        [](void* context, unsigned) { (*static_cast<ReadPieces*>(context))(); }, &read_pieces);
+    helpers.start(static_cast<unsigned>(pieces) - 1, read_pieces);
     read_pieces();
     helpers.finish();
     return whole && ends_at(fd, size);

@@ -43,8 +43,7 @@ extern "C" void render_on_interrupt(int signal_number) {
 #else
     if (cleanup_set != 0) (void)unlink(cleanup_path);
 #endif
-    if (erase_line != 0)
-        say("\r                                                                               \r");
+    if (erase_line != 0) say(kEraseLine);
     const char* name = "a signal";
     if (signal_number == SIGINT) name = "SIGINT";
     if (signal_number == SIGTERM) name = "SIGTERM";

@@ -345,12 +345,9 @@ Scene parse_scene(std::string_view text, const std::string& file_name, unsigned 
     auto parse_pieces = [&] {
         for (std::size_t k; (k = next++) < parts.size();) parts[k].parse();
     };
-    using ParsePieces = decltype(parse_pieces);
     HelperPool::Job helpers;
     if (parts.size() > 1)
-        helpers.start(
-            std::min(threads, static_cast<unsigned>(parts.size())) - 1,
-            [](void* context, unsigned) { (*static_cast<ParsePieces*>(context))(); }, &parse_pieces);
+        helpers.start(std::min(threads, static_cast<unsigned>(parts.size())) - 1, parse_pieces);
     parts[0].parse();
     parse_pieces();
     helpers.finish();

@@ -15,12 +15,6 @@ namespace rt {
 
 namespace {
 
-// Erases a line by overwriting it with spaces, which every terminal and the Windows
-// console understand (an ANSI "erase line" is not understood by older consoles). Every
-// line drawn is shorter.
-constexpr const char* kEraseLine =
-    "\r                                                                               \r";
-
 std::string seconds(double s) {
     char text[32];
     if (s < 60) {

@@ -78,11 +78,8 @@ void render_pixels_to(const Scene& scene, Geometry geometry, RowSink& sink, unsi
             for (int row = r; row < end; ++row) ring.finish(row);
         }
     };
-    using TakeRows = decltype(take_rows);
     HelperPool::Job helpers;
-    if (count > 1)
-        helpers.start(
-            count - 1, [](void* context, unsigned) { (*static_cast<TakeRows*>(context))(); }, &take_rows);
+    if (count > 1) helpers.start(count - 1, take_rows);
     take_rows();
     helpers.finish();
     ring.flush();

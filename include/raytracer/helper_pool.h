@@ -2,6 +2,8 @@
 // never waited for when they come too late to help.
 #pragma once
 
+#include <type_traits>
+
 namespace rt {
 
 // The cores this process may run on: its CPU affinity mask on Linux (which taskset and
@@ -43,6 +45,20 @@ public:
         ~Job() { finish(); }
 
         unsigned start(unsigned helpers, Body body, void* context);
+        // The same with work() or work(helper) as the body (work outlives the job).
+        template <typename Work>
+        unsigned start(unsigned helpers, Work& work) {
+            return start(
+                helpers,
+                [](void* context, unsigned helper) {
+                    Work& w = *static_cast<Work*>(context);
+                    if constexpr (std::is_invocable_v<Work&, unsigned>)
+                        w(helper);
+                    else
+                        w();
+                },
+                &work);
+        }
         void finish();
 
     private:

@@ -1,4 +1,4 @@
-// An 8-bit RGB image, rows from the top, and a colour channel's byte (to_byte()).
+// An 8-bit RGB image, rows from the top, and a colour's bytes (to_byte(), pixel_bytes()).
 #pragma once
 
 #include <cstdint>
@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "raytracer/scene_precision.h"
+#include "raytracer/vec3.h"
 
 namespace rt {
 
@@ -58,6 +59,12 @@ std::uint8_t to_byte(Real channel) {
     auto whole = static_cast<int>(level);
     if (Real(whole + 1) - level <= Real(16) * scene_epsilon<Real>() * level) ++whole;
     return static_cast<std::uint8_t>(whole);
+}
+
+// A colour's three bytes, to_byte() of each channel, into out[0..2].
+template <typename Real>
+void pixel_bytes(const Vec3<Real>& colour, std::uint8_t* out) {
+    out[0] = to_byte(colour.x), out[1] = to_byte(colour.y), out[2] = to_byte(colour.z);
 }
 
 }  // namespace rt

@@ -23,4 +23,10 @@ void clear_interrupt_cleanup();
 // Whether a progress line is on the terminal: a handler erases it before its message.
 void set_interrupt_erases_line(bool erase);
 
+// Erases a line by overwriting it with spaces, which every terminal and the Windows
+// console understand (an ANSI "erase line" is not understood by older consoles). Every
+// progress line drawn is shorter.
+inline constexpr const char* kEraseLine =
+    "\r                                                                               \r";
+
 }  // namespace rt

@@ -153,8 +153,8 @@ public:
         // renders the row, and only traced pixels are written over: most pixels of the
         // course scenes see no ellipsoid, and a copy costs far less than a per-pixel test
         // (measured in docs/speed.md).
-        const Vec3<Real> back = tracer_.background();
-        const std::uint8_t background[3] = {to_byte(back.x), to_byte(back.y), to_byte(back.z)};
+        std::uint8_t background[3];
+        pixel_bytes(tracer_.background(), background);
         for (std::size_t i = 0; i < background_row_.size(); ++i) background_row_[i] = background[i % 3];
     }
 
@@ -274,14 +274,12 @@ void render_flat_sweep_to(const Scene& scene, RowSink& sink, unsigned threads) {
     // nothing (its first allocation would set up a malloc arena of its own).
     std::vector<Workspace<Real>> helper_work;
     auto help = [&](unsigned h) { sweep.take_rows(helper_work[h], [](int) {}); };
-    using Help = decltype(help);
     HelperPool::Job helpers;  // declared after all that help uses: closed first
     auto call_helpers = [&](unsigned count) {
         const unsigned wanted = std::min<unsigned>(count, static_cast<unsigned>(scene.rows)) - 1;
         helper_work.reserve(wanted);  // no reallocation: the helpers hold references
         for (unsigned h = 0; h < wanted; ++h) helper_work.push_back(sweep.workspace());
-        helpers.start(
-            wanted, [](void* context, unsigned h) { (*static_cast<Help*>(context))(h); }, &help);
+        helpers.start(wanted, help);
     };
     // By default (threads = 0) the calling thread starts alone and calls in the other
     // cores only when, at its pace so far, the rest of the image would take it longer

@@ -29,9 +29,9 @@ void run_beside(Other other, Here here) {
             }
         }
     } shared(other);
-    HelperPool::Job job;
-    job.start(
-        1, [](void* context, unsigned /*helper*/) { static_cast<Shared*>(context)->claim(); }, &shared);
+    auto claim = [&shared] { shared.claim(); };
+    HelperPool::Job job;  // declared after what the helper uses: closed first
+    job.start(1, claim);
     here();  // on an exception, ~Job() waits for a helper inside other()
     shared.claim();
     job.finish();

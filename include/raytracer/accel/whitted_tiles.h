@@ -39,8 +39,7 @@ public:
         std::vector<V> lights(tracer.light_count());
         for (std::size_t li = 0; li < lights.size(); ++li) lights[li] = tracer.light_position(li);
         shells_ = LightShells<Real>(tracer.geometry(), lights);
-        const V& back = tracer.background();
-        background_[0] = to_byte(back.x), background_[1] = to_byte(back.y), background_[2] = to_byte(back.z);
+        pixel_bytes(tracer.background(), background_);
         for (int c = 0; c < kBlockColumns; ++c) std::memcpy(background_row_ + 3 * c, background_, 3);
     }
 
@@ -133,8 +132,7 @@ public:
         }
         for (unsigned m = hits; m != 0; m &= m - 1) {
             const int k = lowest_bit(m);
-            const V colour = eye.colour(k);
-            out[k][0] = to_byte(colour.x), out[k][1] = to_byte(colour.y), out[k][2] = to_byte(colour.z);
+            pixel_bytes(eye.colour(k), out[k]);
         }
     }
 

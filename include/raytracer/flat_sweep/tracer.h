@@ -66,9 +66,7 @@ public:
         for (const Ellipsoid<Real>& e : ellipsoids_) {
             Surface surface{(ambient_ * e.ka) * e.colour, specular_is_zero(e) && e.kd == 0, false, {}};
             surface.flat = surface.no_lighting && !(e.kr > 0);
-            surface.bytes[0] = to_byte(surface.ambient.x);
-            surface.bytes[1] = to_byte(surface.ambient.y);
-            surface.bytes[2] = to_byte(surface.ambient.z);
+            pixel_bytes(surface.ambient, surface.bytes);
             surfaces_.push_back(surface);
         }
         bounds_ = SphereBounds<Real>(ellipsoids_, light_positions);
@@ -147,9 +145,7 @@ public:
                         std::uint8_t* const* out) const {
         V colours[kPacket];
         eye_hit_colours(i, count, dx, dy, dz, t, inside, scratch, colours);
-        for (int k = 0; k < count; ++k)
-            out[k][0] = to_byte(colours[k].x), out[k][1] = to_byte(colours[k].y),
-            out[k][2] = to_byte(colours[k].z);
+        for (int k = 0; k < count; ++k) pixel_bytes(colours[k], out[k]);
     }
     // The bytes of every pixel that sees ellipsoid i where its colour is its ambient term
     // alone (Kd = Ks = Kr = 0: no light nor mirror adds to it), else nullptr.

@@ -60,8 +60,7 @@ public:
 
     // The three bytes of the pixel whose eye ray goes from the camera through (x, y).
     void pixel(Real x, Real y, std::uint8_t* out, Scratch& scratch) const {
-        const V colour = eye_ray_colour({x, y, near_z_}, scratch);
-        out[0] = to_byte(colour.x), out[1] = to_byte(colour.y), out[2] = to_byte(colour.z);
+        pixel_bytes(eye_ray_colour({x, y, near_z_}, scratch), out);
     }
     // The colour seen from the camera along direction (before conversion to bytes).
     V eye_ray_colour(const V& direction, Scratch& scratch) const {
