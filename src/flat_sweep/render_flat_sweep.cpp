@@ -98,15 +98,12 @@ std::chrono::microseconds worth_helping() {
     return std::chrono::microseconds(HelperPool::starts_on_idle_core() ? 100 : 3000);
 }
 
-// Each column's x on the near plane, computed once instead of per row (the same
-// operations, so the same bits).
+// Each column's x on the near plane, computed once instead of per row.
 template <typename Real>
 std::vector<Real> column_xs(const Scene& scene) {
-    const Real left = static_cast<Real>(scene.left), right = static_cast<Real>(scene.right);
     std::vector<Real> x(static_cast<std::size_t>(scene.columns));
     for (int c = 0; c < scene.columns; ++c)
-        x[static_cast<std::size_t>(c)] =
-            left + (right - left) * static_cast<Real>(c) / static_cast<Real>(scene.columns);
+        x[static_cast<std::size_t>(c)] = pixel_x(Real(scene.left), Real(scene.right), c, scene.columns);
     return x;
 }
 
@@ -197,7 +194,7 @@ private:
         std::copy(background_row_.begin(), background_row_.end(), ring_.row(r));
         in_row.clear();
         int lo = scene_.columns, hi = -1;  // the columns some ellipsoid may cover
-        const double row_y_double = scene_.top - (scene_.top - scene_.bottom) * r / scene_.rows;
+        const double row_y_double = pixel_y(scene_.top, scene_.bottom, r, scene_.rows);
         for (std::uint32_t i = 0; i < rects_.size(); ++i) {
             Span span{i, rects_[i].first_column, rects_[i].last_column};
             if (rects_[i].first_row <= r && r <= rects_[i].last_row &&
@@ -207,9 +204,7 @@ private:
                 hi = std::max(hi, span.last);
             }
         }
-        // The top-left corner of the pixel, not its centre: the keys demand it.
-        const Real top = static_cast<Real>(scene_.top), bottom = static_cast<Real>(scene_.bottom);
-        const Real y = top - (top - bottom) * static_cast<Real>(r) / static_cast<Real>(scene_.rows);
+        const Real y = pixel_y(Real(scene_.top), Real(scene_.bottom), r, scene_.rows);
         const int b = r - band.first_row;
         EyeRowHits<Real>& hits = work.hits[static_cast<std::size_t>(b)];
         EyeRays<Real>::clear(hits, lo, hi);

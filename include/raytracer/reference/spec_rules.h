@@ -23,6 +23,17 @@ inline constexpr double kShadowRayMinT = 0.001;  // the keys need 0.001, not 0.0
 inline constexpr double kReflectedRayMinT = 0.0001;
 inline constexpr int kMaxReflections = 3;
 
+// Where column c of `columns` and row r of `rows` look through the near plane: the
+// top-left corner of the pixel, not its centre (the keys demand it; SPEC section 3).
+template <typename Real>
+Real pixel_x(Real left, Real right, int c, int columns) {
+    return left + (right - left) * Real(c) / Real(columns);
+}
+template <typename Real>
+Real pixel_y(Real top, Real bottom, int r, int rows) {
+    return top - (top - bottom) * Real(r) / Real(rows);
+}
+
 // A ray parameter a root must lie beyond to be visible, for a ray that starts at
 // min_t. A root computed within a few ulps of min_t cannot be told from one at min_t,
 // and one at min_t is not visible (the hit must lie beyond it). This decides the eye

@@ -33,8 +33,8 @@ public:
           bottom_(Real(scene.bottom)),
           top_(Real(scene.top)),
           near_z_(-Real(scene.near_plane)),
-          columns_(Real(scene.columns)),
-          rows_(Real(scene.rows)) {
+          columns_(scene.columns),
+          rows_(scene.rows) {
         lights_.reserve(scene.lights.size());
         for (const LightSpec& l : scene.lights)
             lights_.push_back({V::from(l.position), V::from(l.intensity)});
@@ -46,10 +46,9 @@ public:
         }
     }
 
-    // The x of column c and the y of row r on the near plane: the pixel's top-left
-    // corner, not its centre (the keys demand it; SPEC section 3).
-    Real column_x(int c) const { return left_ + (right_ - left_) * Real(c) / columns_; }
-    Real row_y(int r) const { return top_ - (top_ - bottom_) * Real(r) / rows_; }
+    // The x of column c and the y of row r on the near plane (spec_rules.h).
+    Real column_x(int c) const { return pixel_x(left_, right_, c, columns_); }
+    Real row_y(int r) const { return pixel_y(top_, bottom_, r, rows_); }
 
     // A thread's working memory: per light, the geometry's hint for its shadow rays
     // (spec_rules.h). Neighbouring pixels share their shadows.
@@ -120,7 +119,8 @@ private:
     std::vector<Light> lights_;
     std::vector<Material> materials_;  // per ellipsoid
     V ambient_, background_;
-    Real left_, right_, bottom_, top_, near_z_, columns_, rows_;
+    Real left_, right_, bottom_, top_, near_z_;
+    int columns_, rows_;
 };
 
 }  // namespace rt
