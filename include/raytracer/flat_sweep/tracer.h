@@ -52,19 +52,19 @@ public:
     // The reference that the tests hold this tracer's images to, byte for byte, is
     // whitted.h with brute_force.h (render(..., accelerate = false)).
     explicit Tracer(const Scene& scene)
-        : ambient_(V::from(scene.ambient)), background_(V::from(scene.background)) {
-        ellipsoids_.reserve(scene.spheres.size());
-        for (const SphereSpec& s : scene.spheres) ellipsoids_.push_back(make_ellipsoid<Real>(s));
+        : ellipsoids_(make_ellipsoids<Real>(scene)),
+          ambient_(V::from(scene.ambient)),
+          background_(V::from(scene.background)) {
         lights_.reserve(scene.lights.size());
         std::vector<V> light_positions;
         for (const LightSpec& l : scene.lights) {
             lights_.push_back({V::from(l.position), V::from(l.intensity)});
             light_positions.push_back(V::from(l.position));
         }
-        // Per ellipsoid, the ambient term Ka*Ia*O (the same operations as per hit) and
-        // whether no light adds anything (see hit_colours()).
+        // Per ellipsoid, the ambient term and whether no light adds anything (see
+        // hit_colours()).
         for (const Ellipsoid<Real>& e : ellipsoids_) {
-            Surface surface{(ambient_ * e.ka) * e.colour, specular_is_zero(e) && e.kd == 0, false, {}};
+            Surface surface{ambient_term(ambient_, e), no_lighting(e), false, {}};
             surface.flat = surface.no_lighting && !(e.kr > 0);
             pixel_bytes(surface.ambient, surface.bytes);
             surfaces_.push_back(surface);

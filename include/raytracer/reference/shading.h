@@ -53,6 +53,18 @@ Finish<Lanes<Real, N>> every_lane(const Finish<Real>& f) {
             f.specular ? LaneBits(~LaneBits(0) >> (64 - N)) : LaneBits(0)};
 }
 
+// Ellipsoid e's ambient term Ka*Ia*O, as every hit on it computes it.
+template <typename Real>
+Vec3<Real> ambient_term(const Vec3<Real>& ambient, const Ellipsoid<Real>& e) {
+    return (ambient * e.ka) * e.colour;
+}
+
+// Whether no light can add to e's colour: Kd = 0 and no specular term.
+template <typename Real>
+bool no_lighting(const Ellipsoid<Real>& e) {
+    return specular_is_zero(e) && e.kd == 0;
+}
+
 // A ray's hit: the point, the unit normal facing the viewer, and normalize(-direction).
 template <typename T>
 struct SurfacePoint {

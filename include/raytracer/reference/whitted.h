@@ -41,8 +41,7 @@ public:
         materials_.reserve(scene.spheres.size());
         for (std::uint32_t i = 0; i < scene.spheres.size(); ++i) {
             const Ellipsoid<Real>& e = geometry_.ellipsoid(i);
-            // With Ks = 0 (specular_is_zero()) and Kd = 0, no light adds anything.
-            materials_.push_back({(ambient_ * e.ka) * e.colour, specular_is_zero(e) && e.kd == 0});
+            materials_.push_back({ambient_term(ambient_, e), no_lighting(e)});
         }
     }
 
