@@ -26,6 +26,29 @@ struct BoundingSphere {
     C x, y, z, radius;
 };
 
+// A sphere as seen from a point: its distance, unit direction, and the sine and cosine
+// of its angular radius; a sphere around the point (its radius widened by margin) or
+// at a NaN distance is seen in every direction, and nothing else is set.
+template <typename C>
+struct SeenSphere {
+    C distance, ux, uy, uz, sin_b, cos_b;
+    bool everywhere;
+};
+
+template <typename C>
+SeenSphere<C> seen_from(C px, C py, C pz, const BoundingSphere<C>& s, double margin) {
+    using std::sqrt;
+    SeenSphere<C> v{};
+    const C wx = s.x - px, wy = s.y - py, wz = s.z - pz;
+    v.distance = sqrt(wx * wx + wy * wy + wz * wz);
+    v.everywhere = !(v.distance > s.radius * (C(1) + C(margin)));
+    if (v.everywhere) return v;
+    v.ux = wx / v.distance, v.uy = wy / v.distance, v.uz = wz / v.distance;
+    v.sin_b = s.radius / v.distance;
+    v.cos_b = sqrt(C(1) - v.sin_b * v.sin_b);
+    return v;
+}
+
 template <typename C>
 class DirectionGrid {
 public:
@@ -83,7 +106,9 @@ public:
         : x_(px), y_(py), z_(pz), n_(n), half_n_(C(n) / 2) {
         const std::size_t face_cells = static_cast<std::size_t>(n) * static_cast<std::size_t>(n);
         const std::size_t cells = 6 * face_cells;
-        const std::vector<Seen> seen = seen_from(px, py, pz, spheres);
+        std::vector<SeenSphere<C>> seen;
+        seen.reserve(spheres.size());
+        for (const BoundingSphere<C>& s : spheres) seen.push_back(seen_from(px, py, pz, s, kAngleMargin));
         // Each cell's list as a bit set (bit i: sphere i), sphere by sphere over all the
         // cells of a face: vector instructions, each cell's test the same operations.
         // Where there are more spheres than bits, cell by cell into the lists directly.
@@ -95,7 +120,7 @@ public:
             const C sign = (face & 1) ? C(-1) : C(1);
             // Sphere i's direction in the face's coordinates (w, u, v), so that its angle
             // to a cell's centre is a dot product with the cell's cone.
-            auto local = [&](const Seen& v, C& w, C& u, C& t) {
+            auto local = [&](const SeenSphere<C>& v, C& w, C& u, C& t) {
                 if (face < 2) {
                     w = sign * v.ux, u = v.uy, t = v.uz;
                 } else if (face < 4) {
@@ -110,7 +135,7 @@ public:
             if (as_bits) {
                 std::uint64_t* const face_bits = bits_.data() + static_cast<std::size_t>(face) * face_cells;
                 for (std::size_t i = 0; i < spheres.size(); ++i) {
-                    const Seen& v = seen[i];
+                    const SeenSphere<C>& v = seen[i];
                     const std::uint64_t bit = std::uint64_t(1) << i;
                     if (v.everywhere) {
                         for (std::size_t k = 0; k < face_cells; ++k) face_bits[k] |= bit;
@@ -128,7 +153,7 @@ public:
                 continue;
             }
             for (std::size_t k = 0; k < face_cells; ++k) {
-                for (const Seen& v : seen) {
+                for (const SeenSphere<C>& v : seen) {
                     bool listed = v.everywhere;
                     if (!listed) {
                         C lw, lu, lv;
@@ -198,29 +223,6 @@ private:
     // Far above the rounding of a lookup (a few ulps of a direction) and of the cone
     // test; small against a cell (2/n of a face).
     static constexpr double kAngleMargin = 1e-6;
-
-    // A sphere as seen from X: its unit direction and the sine and cosine of its angular
-    // radius; a sphere around X is seen in every direction.
-    struct Seen {
-        C ux, uy, uz, sin_b, cos_b;
-        bool everywhere;
-    };
-    static std::vector<Seen> seen_from(C px, C py, C pz, const std::vector<BoundingSphere<C>>& spheres) {
-        using std::sqrt;
-        std::vector<Seen> seen(spheres.size());
-        for (std::size_t i = 0; i < spheres.size(); ++i) {
-            const BoundingSphere<C>& s = spheres[i];
-            const C wx = s.x - px, wy = s.y - py, wz = s.z - pz;
-            const C dist = sqrt(wx * wx + wy * wy + wz * wz);
-            Seen& v = seen[i];
-            v.everywhere = !(dist > s.radius * (C(1) + kAngleMargin));
-            if (v.everywhere) continue;
-            v.ux = wx / dist, v.uy = wy / dist, v.uz = wz / dist;
-            v.sin_b = s.radius / dist;
-            v.cos_b = sqrt(C(1) - v.sin_b * v.sin_b);
-        }
-        return seen;
-    }
 
     // Cell index along one face axis of k = (w + 1) n / 2 for a coordinate w in [-1, 1];
     // NaN gives 0.

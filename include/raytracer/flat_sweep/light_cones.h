@@ -52,7 +52,6 @@ public:
 
     LightCones(const std::vector<BoundingSphere<C>>& spheres, const std::vector<Vec3<C>>& lights)
         : n_(spheres.size()), stride_((spheres.size() + 7) / 8 * 8) {
-        using std::sqrt;
         if (n_ > kMaxSpheres) return;
         all_ = n_ == kMaxSpheres ? ~std::uint64_t(0) : (std::uint64_t(1) << n_) - 1;
         const std::size_t size = stride_ * lights.size();
@@ -63,17 +62,15 @@ public:
         for (std::size_t l = 0; l < lights.size(); ++l)
             for (std::size_t j = 0; j < n_; ++j) {
                 const BoundingSphere<C>& s = spheres[j];
-                const C wx = s.x - lights[l].x, wy = s.y - lights[l].y, wz = s.z - lights[l].z;
-                const C dist = sqrt(wx * wx + wy * wy + wz * wz);
-                if (!(dist > s.radius * (C(1) + C(kMargin)))) {  // around the light (or NaN)
+                const SeenSphere<C> v = seen_from(lights[l].x, lights[l].y, lights[l].z, s, kMargin);
+                if (v.everywhere) {  // around the light (or NaN)
                     everywhere_[l] |= std::uint64_t(1) << j;
                     continue;
                 }
                 const std::size_t at = l * stride_ + j;
-                ux_[at] = wx / dist, uy_[at] = wy / dist, uz_[at] = wz / dist;
-                sin_b_[at] = s.radius / dist;
-                cos_b_[at] = sqrt(C(1) - sin_b_[at] * sin_b_[at]);
-                near_[at] = dist * (C(1) - C(kMargin)) - s.radius * (C(1) + C(kMargin));
+                ux_[at] = v.ux, uy_[at] = v.uy, uz_[at] = v.uz;
+                sin_b_[at] = v.sin_b, cos_b_[at] = v.cos_b;
+                near_[at] = v.distance * (C(1) - C(kMargin)) - s.radius * (C(1) + C(kMargin));
             }
     }
 
