@@ -119,7 +119,7 @@ public:
             const C p2 = px * px + py * py + pz * pz;
             t.px[i] = px, t.py[i] = py, t.pz[i] = pz;
             t.c[i] = p2 - radius2_[i];
-            t.in_reach[i] = p2 > radius2_[i] && p2 <= guard2_[i] ? C(1) : C(0);
+            t.in_reach[i] = in_reach(p2, radius2_[i], guard2_[i]);
         }
     }
 
@@ -167,10 +167,8 @@ public:
             for (int k = 0; k < N; ++k) {
                 const C px = x[k] - cx, py = y[k] - cy, pz = z[k] - cz;
                 const C p2 = px * px + py * py + pz * pz;
-                const C c = p2 - radius2;
-                const C in_reach = p2 > radius2 && p2 <= guard2 ? C(1) : C(0);
                 const C b = px * u[k] + py * v[k] + pz * w[k];
-                const C cull = in_reach * ((b > 0 ? C(1) : C(0)) + (b * b < dd[k] * c ? C(1) : C(0)));
+                const C cull = culled(in_reach(p2, radius2, guard2), b, dd[k], p2 - radius2);
                 set |= cull == 0 ? bit[k] : 0;
             }
             lanes[i] = set;
@@ -192,7 +190,7 @@ public:
             const C b = t.px[i] * dx + t.py[i] * dy + t.pz[i] * dz;
             // The light outside the sphere and the sphere's centre projecting beyond it:
             // seen from the light along -direction the sphere is wholly behind.
-            cull[i] = outside[i] * (b + dd < 0 ? C(1) : C(0)) + culled(t, b, dd, i);
+            cull[i] = outside[i] * (b + dd < 0 ? C(1) : C(0)) + culled(t.in_reach[i], b, dd, t.c[i]);
         }
         return compact(cull, out);
     }
@@ -201,13 +199,17 @@ private:
     // Relative inflation of the bounding spheres: the safety gap against rounding.
     static constexpr double kInflation = 1e-3;
 
+    // 1 when the origin, at squared distance p2 from the centre, is outside the sphere
+    // but within the guard distance (where culling is allowed), else 0.
+    static C in_reach(C p2, C radius2, C guard2) { return p2 > radius2 && p2 <= guard2 ? C(1) : C(0); }
+
     // Positive when the ray misses the sphere or the sphere lies wholly behind the origin,
-    // else 0; only decided when the origin is outside the sphere (then b > 0 puts the
-    // whole sphere at t < 0, and a negative discriminant b^2 - dd c means the line misses
-    // it) and within the guard distance. The conditions are numbers, not bools, joined by
-    // * and +: that form is branch-free, which GCC's vectoriser needs.
-    static C culled(const OriginTerms& t, C b, C dd, std::size_t i) {
-        return t.in_reach[i] * ((b > 0 ? C(1) : C(0)) + (b * b < dd * t.c[i] ? C(1) : C(0)));
+    // else 0; only decided in reach (then b > 0 puts the whole sphere at t < 0, and a
+    // negative discriminant b^2 - dd c means the line misses it). b = (origin - centre).d,
+    // dd = d.d, c = |origin - centre|^2 - radius^2. The conditions are numbers, not bools,
+    // joined by * and +: that form is branch-free, which GCC's vectoriser needs.
+    static C culled(C in_reach, C b, C dd, C c) {
+        return in_reach * ((b > 0 ? C(1) : C(0)) + (b * b < dd * c ? C(1) : C(0)));
     }
 
     std::size_t compact(const C* cull, std::uint32_t* out) const {
