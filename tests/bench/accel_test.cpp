@@ -595,7 +595,7 @@ int adversarial_rays_differing(unsigned seed, int rays) {
 }  // namespace
 
 // The generator above finds 800 differences in 400k rays where a box holding the origin
-// may be culled (the tangent roots), and some where kBoxInflation is 1e-9 or the guard is
+// may be culled (the tangent roots), and some where kCullingGap is 1e-9 or the guard is
 // off (float's rounding at 50 smallest scales).
 TEST(bvh_adversarial_rays_match_brute_force) {
     for (unsigned seed = 1; seed <= 150; ++seed) {

@@ -19,10 +19,6 @@
 
 namespace rt {
 
-// Each ellipsoid's box is grown by this much of each scale: a gap of 1e-3 in the unit
-// sphere's space, as the flat sweep's bounding spheres (sphere_bounds.h).
-inline constexpr double kBoxInflation = 1e-3;
-
 // A ray, or a bundle of rays, as the slab tests take it: per axis, two edges that
 // hold the bundle's points at every t in [0, t1], the lower o_lo + t d_lo and the
 // upper o_hi + t d_hi (one ray: both are the ray; interval arithmetic, as in
@@ -132,11 +128,11 @@ RT_ALWAYS_INLINE unsigned children_met(const WideNode<C, Width>& node, const Sla
     return mask & node.used;
 }
 
-// An ellipsoid's box: grown by kBoxInflation of each scale, by 4 ulps of the centre
-// too, so that the box's own rounding stays inside the gap even for a small
-// ellipsoid far from the origin, and by the smallest subnormal, as a scale below 500
-// of them is its own product with 1 + kBoxInflation: a gap of one ulp is still
-// > kBoxInflation of it. Computed where a leaf is visited, not stored: 48 bytes an
+// An ellipsoid's box: grown by kCullingGap of each scale (unit_sphere_roots.h), by 4
+// ulps of the centre too, so that the box's own rounding stays inside the gap even for
+// a small ellipsoid far from the origin, and by the smallest subnormal, as a scale below 500
+// of them is its own product with 1 + kCullingGap: a gap of one ulp is still
+// > kCullingGap of it. Computed where a leaf is visited, not stored: 48 bytes an
 // ellipsoid would take random 100k's prepared peak past 64 MiB.
 template <typename C, typename Real>
 BuildBox<C> inflated_box(const Ellipsoid<Real>& e) {
@@ -145,7 +141,7 @@ BuildBox<C> inflated_box(const Ellipsoid<Real>& e) {
     const C s[3] = {abs(C(e.scale.x)), abs(C(e.scale.y)), abs(C(e.scale.z))};
     BuildBox<C> box;
     for (int a = 0; a < 3; ++a) {
-        const C half = s[a] * (1 + C(kBoxInflation)) + abs(c[a]) * 4 * std::numeric_limits<C>::epsilon() +
+        const C half = s[a] * (1 + C(kCullingGap)) + abs(c[a]) * 4 * std::numeric_limits<C>::epsilon() +
                        std::numeric_limits<C>::denorm_min();
         box.lo[a] = c[a] - half, box.hi[a] = c[a] + half;
     }
@@ -153,15 +149,13 @@ BuildBox<C> inflated_box(const Ellipsoid<Real>& e) {
 }
 
 // Ellipsoid e as the tree's build takes it (bvh_build.h): its inflated box, its centre
-// and its guard distance. Rounding of intersect() in the unit space grows like
-// epsilon(Real) times the distance in units of the smallest scale: as sphere_bounds.h,
-// at most 1e6 smallest scales in double (1e2 in float). The Euclidean distance is at
-// most sqrt(3) times the max-norm one that the slab test measures: the guard is half
-// the reach.
+// and its guard distance: culling_reach() smallest scales (unit_sphere_roots.h). The
+// Euclidean distance is at most sqrt(3) times the max-norm one that the slab test
+// measures: the guard is half the reach.
 template <typename C, typename Real>
 BuildItem<C> build_item(const Ellipsoid<Real>& e, std::uint32_t index) {
     using std::abs;
-    const C reach = std::numeric_limits<Real>::digits > 30 ? C(1e6) : C(1e2);
+    const C reach = C(culling_reach<Real>());
     const C guard = std::min({abs(C(e.scale.x)), abs(C(e.scale.y)), abs(C(e.scale.z))}) * reach / 2;
     BuildItem<C> item;
     item.box = inflated_box<C>(e);

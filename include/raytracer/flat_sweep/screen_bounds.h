@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "raytracer/flat_sweep/direction_grid.h"
+#include "raytracer/reference/unit_sphere_roots.h"
 #include "raytracer/scene.h"
 #include "raytracer/vec3.h"
 
@@ -89,7 +90,7 @@ std::vector<PixelRect> screen_bounds(const Scene& scene, const std::vector<Bound
 
 // Tighter than the rectangle: within one row, the columns whose eye rays may meet an
 // ellipsoid. The eye rays of row r are d(x) = (x, y_r, -near); mapped into the unit
-// space of the ellipsoid inflated by kInflation (so o' = -C/s', d' = d/s'), the ray meets
+// space of the ellipsoid inflated by kCullingGap (so o' = -C/s', d' = d/s'), the ray meets
 // it where disc(x) = (o'.d')^2 - |d'|^2 (|o'|^2 - 1) >= 0, a quadratic A x^2 + 2 B x + K
 // in x whose roots bound the columns (two columns of margin, as for the rectangle).
 // Only for an ellipsoid wholly in front of the eye (then A < 0 and the set is one
@@ -109,8 +110,8 @@ public:
         for (std::size_t i = 0; i < centres.size(); ++i) {
             using std::abs;
             Span sp{};
-            const C sx = abs(scales[i].x) * (1 + kInflation), sy = abs(scales[i].y) * (1 + kInflation);
-            const C sz = abs(scales[i].z) * (1 + kInflation);
+            const C sx = abs(scales[i].x) * (1 + kCullingGap), sy = abs(scales[i].y) * (1 + kCullingGap);
+            const C sz = abs(scales[i].z) * (1 + kCullingGap);
             sp.ox = -centres[i].x / sx, sp.oy = -centres[i].y / sy, sp.oz = -centres[i].z / sz;
             sp.kx = 1 / sx, sp.ky = 1 / sy, sp.kz = 1 / sz;
             const C o2 = sp.ox * sp.ox + sp.oy * sp.oy + sp.oz * sp.oz;
@@ -144,7 +145,6 @@ public:
     }
 
 private:
-    static constexpr double kInflation = 1e-3;  // as sphere_bounds.h
     struct Span {
         C ox, oy, oz, kx, ky, kz, gamma, a;
         bool exact;

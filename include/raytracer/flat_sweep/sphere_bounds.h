@@ -5,8 +5,8 @@
 // that clearly misses a slightly inflated bounding sphere (or has it wholly behind its
 // origin, or wholly beyond the light for a shadow ray) is rejected here with a few
 // multiplications and no division. The sphere of an ellipsoid is centred on it with
-// radius max|s| (1 + kInflation); it contains the ellipsoid with a gap of at least
-// kInflation in the unit sphere's space, far more than the rounding of intersect() (a
+// radius max|s| (1 + kCullingGap); it contains the ellipsoid with a gap of at least
+// kCullingGap in the unit sphere's space, far more than the rounding of intersect() (a
 // few ulps, plus its tangent bound, unit_sphere_roots.h: at most ~64 epsilon times the
 // distance in radii, 1e-8 within the reach below). So every culled test is one that
 // intersect() would have answered "no usable root", and images stay bit-identical.
@@ -43,17 +43,14 @@ public:
     SphereBounds() = default;
 
     SphereBounds(const std::vector<Ellipsoid<Real>>& ellipsoids, const std::vector<Vec3<Real>>& lights) {
-        // Rounding of intersect() in the unit space grows like epsilon(Real) times the
-        // distance in units of the smallest scale; allow distances up to 1e6 (double) or
-        // 1e2 (float) smallest scales, i.e. at most ~1e-10 (1e-5) against a gap of 1e-3.
-        const C reach = std::numeric_limits<Real>::digits > 30 ? C(1e6) : C(1e2);
+        const C reach = C(culling_reach<Real>());  // in smallest scales (unit_sphere_roots.h)
         const std::size_t n = ellipsoids.size();
         cx_.resize(n), cy_.resize(n), cz_.resize(n), radius_.resize(n), radius2_.resize(n), guard2_.resize(n);
         for (std::size_t i = 0; i < n; ++i) {
             const Ellipsoid<Real>& e = ellipsoids[i];
             using std::abs;
             const C sx = abs(C(e.scale.x)), sy = abs(C(e.scale.y)), sz = abs(C(e.scale.z));
-            const C radius = std::max({sx, sy, sz}) * (C(1) + kInflation);
+            const C radius = std::max({sx, sy, sz}) * (C(1) + kCullingGap);
             const C smallest = std::min({sx, sy, sz}) * reach;
             cx_[i] = C(e.centre.x), cy_[i] = C(e.centre.y), cz_[i] = C(e.centre.z);
             radius_[i] = radius;
@@ -196,9 +193,6 @@ public:
     }
 
 private:
-    // Relative inflation of the bounding spheres: the safety gap against rounding.
-    static constexpr double kInflation = 1e-3;
-
     // 1 when the origin, at squared distance p2 from the centre, is outside the sphere
     // but within the guard distance (where culling is allowed), else 0.
     static C in_reach(C p2, C radius2, C guard2) { return p2 > radius2 && p2 <= guard2 ? C(1) : C(0); }
