@@ -17,12 +17,6 @@
 #include "raytracer/shown.h"
 #include "raytracer/version.h"
 
-#ifdef _WIN32
-#include <io.h>
-#else
-#include <unistd.h>
-#endif
-
 namespace {
 
 enum ExitStatus : int {
@@ -70,14 +64,6 @@ const char* usage_text() {
            "128 + N interrupted by signal N (SIGINT 130, SIGHUP 129, SIGTERM 143).\n";
 }
 
-bool stdout_is_terminal() {
-#ifdef _WIN32
-    return _isatty(_fileno(stdout)) != 0;
-#else
-    return isatty(1) != 0;
-#endif
-}
-
 // "<scene>:<line>: error: OUTPUT ..." for the scene's OUTPUT, "raytracer.exe: error:
 // -o ..." for the user's.
 int cannot_write(const std::string& scene_file, const rt::Scene& scene, const rt::OutputChoice& output,
@@ -94,7 +80,7 @@ int render(const rt::CommandLine& line, const rt::Scene& scene) {
     const rt::OutputChoice output =
         rt::choose_output(scene.output, line.output_given ? &line.output : nullptr, line.scene_file);
     if (!output.refusal.empty()) return cannot_write(line.scene_file, scene, output, output.refusal);
-    if (output.destination == rt::Destination::StandardOutput && stdout_is_terminal()) {
+    if (output.destination == rt::Destination::StandardOutput && rt::is_terminal(stdout)) {
         return cannot_write(line.scene_file, scene, output,
                             "'-' is a terminal, expected a pipe or a file for a binary image");
     }
@@ -108,7 +94,7 @@ int render(const rt::CommandLine& line, const rt::Scene& scene) {
         rt::P6Writer writer(file, scene.columns, scene.rows);
         const bool progress =
             line.progress == rt::CommandLine::Progress::Always ||
-            (line.progress == rt::CommandLine::Progress::WhenTerminal && rt::stderr_is_terminal());
+            (line.progress == rt::CommandLine::Progress::WhenTerminal && rt::is_terminal(stderr));
         rt::ProgressSink sink(writer, scene.rows, progress);
         rt::render_to<double>(scene, sink, line.threads);
         rt::HelperPool::retire();  // the last job of this process

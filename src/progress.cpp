@@ -28,11 +28,11 @@ std::string seconds(double s) {
 
 }  // namespace
 
-bool stderr_is_terminal() {
+bool is_terminal(std::FILE* stream) {
 #ifdef _WIN32
-    return _isatty(_fileno(stderr)) != 0;
+    return _isatty(_fileno(stream)) != 0;
 #else
-    return isatty(2) != 0;
+    return isatty(fileno(stream)) != 0;
 #endif
 }
 

@@ -8,13 +8,14 @@
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
 
 #include "raytracer/row_sink.h"
 
 namespace rt {
 
-// Whether stderr is a terminal (one system call).
-bool stderr_is_terminal();
+// Whether a standard stream (stdout, stderr) is a terminal (one system call).
+bool is_terminal(std::FILE* stream);
 
 class ProgressSink final : public RowSink {
 public:

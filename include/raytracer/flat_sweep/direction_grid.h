@@ -12,12 +12,12 @@
 #pragma once
 
 #include <algorithm>
-#include <bitset>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
+#include "raytracer/bit_scan.h"
 namespace rt {
 
 // A bounding sphere, in double (or wider) precision.
@@ -169,7 +169,7 @@ public:
         if (!as_bits) return;
         // The lists from the bit sets, in increasing order, in one allocation.
         std::size_t listed = 0;
-        for (const std::uint64_t b : bits_) listed += std::bitset<64>(b).count();
+        for (const std::uint64_t b : bits_) listed += static_cast<std::size_t>(bit_count(b));
         items_.reserve(listed);
         for (std::uint64_t b : bits_) {
             for (std::uint32_t i = 0; b != 0; ++i, b >>= 1)
