@@ -42,7 +42,7 @@ struct Pool {
 #endif
 };
 
-// Never destroyed: sleeping helpers wait on it until the process ends.
+// Never destroyed: sleeping helpers wait on it until retire() or the end of the process.
 Pool& pool() {
     static Pool* const p = new Pool;
     return *p;
@@ -126,14 +126,6 @@ unsigned HelperPool::Job::start(unsigned helpers, Body body, void* context) {
     if (helpers == 0) return 0;
     Pool& p = pool();
     if (!p.job_mutex.try_lock()) return 0;  // another render has the helpers
-    {
-        const std::lock_guard<std::mutex> lock(p.wake_mutex);
-        if (p.retired) {
-            p.job_mutex.unlock();
-            return 0;
-        }
-    }
-    started_ = true;
 #if RT_HELPERS_PINNED_START
     if (p.threads == 0) p.have_process_cpus = process_cpus(p.process_cpus);
 #endif
@@ -141,8 +133,14 @@ unsigned HelperPool::Job::start(unsigned helpers, Body body, void* context) {
     p.context = context;
     p.helpers = helpers;
     {
+        // Opened only while not retired, in one step with the check.
         const std::lock_guard<std::mutex> lock(p.wake_mutex);
-        p.state.store((((p.state.load() >> 1) + 1) << 1) | 1U);
+        started_ = !p.retired;
+        if (started_) p.state.store((((p.state.load() >> 1) + 1) << 1) | 1U);
+    }
+    if (!started_) {
+        p.job_mutex.unlock();
+        return 0;
     }
     p.wake.notify_all();  // the helpers made before
     // The helpers still missing see the open job as soon as they run.

@@ -1,7 +1,8 @@
 // The eye rays intersected many columns at a time (eye_rays.h) against the scalar path
 // they replace: intersect_mapped() per pixel and ellipsoid, and the nearest hit chosen
-// as Tracer::closest() does. Each column's ellipsoid, t (bit for bit) and inside flag
-// must be equal, in float, double and long double, with and without the column tables.
+// as the reference's BruteForce::closest() does (visible_root(), spec_rules.h). Each column's ellipsoid, t
+// (bit for bit) and inside flag must be equal, in float, double and long double, with and without the column
+// tables.
 #include <algorithm>
 #include <cstdint>
 #include <random>
@@ -68,7 +69,7 @@ struct Nearest {
     bool inside = false;
 };
 
-// The scalar reference: Tracer::closest() over all ellipsoids with intersect_mapped().
+// The scalar reference: BruteForce::closest()'s choice over all ellipsoids with intersect_mapped().
 template <typename Real>
 Nearest<Real> reference(const std::vector<rt::Ellipsoid<Real>>& ellipsoids,
                         const std::vector<rt::MappedOrigin<Real>>& origins, const rt::Vec3<Real>& direction) {

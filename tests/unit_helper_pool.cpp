@@ -106,17 +106,21 @@ TEST(retired_helpers_end_and_later_jobs_run_alone) {
     }
     rt::HelperPool::retire();
 #ifdef __linux__
-    // Each helper wakes and exits: the process is back to its one thread.
-    auto threads = [] {
-        int count = 0;
-        for (const auto& entry : std::filesystem::directory_iterator("/proc/self/task"))
-            count += !entry.path().empty();
-        return count;
-    };
-    const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(10);
-    while (threads() > 1 && std::chrono::steady_clock::now() < until)
-        std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    CHECK_EQ(threads(), 1);
+    // Each helper wakes and exits: the process is back to its one thread (where /proc is
+    // mounted).
+    const std::filesystem::path tasks = "/proc/self/task";
+    if (std::filesystem::exists(tasks)) {
+        auto threads = [&tasks] {
+            int count = 0;
+            for (const auto& entry : std::filesystem::directory_iterator(tasks))
+                count += !entry.path().empty();
+            return count;
+        };
+        const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+        while (threads() > 1 && std::chrono::steady_clock::now() < until)
+            std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        CHECK_EQ(threads(), 1);
+    }
 #endif
     Record later(2, 0);
     rt::HelperPool::Job job;

@@ -68,8 +68,9 @@ public:
     // Ends the helpers: each sleeping one wakes and exits, on its own core, and jobs
     // started from now on get none (start() returns 0). For a program about to end:
     // WHY: a helper still asleep when the process exits is woken by the exit to be
-    // ended, and the exit waits for it (0.06-0.1 ms here, where the core it sleeps on
-    // has gone idle); woken now, it is gone while the caller writes and closes its file.
+    // ended, and the exit waits for it (about 0.06 ms more here, in the median, where the
+    // core it sleeps on has gone idle); woken now, it is gone while the caller writes and
+    // closes its file.
     static void retire();
 
     // True where a new helper starts on another core at once (Linux): a helper then

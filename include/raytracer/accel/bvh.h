@@ -9,15 +9,15 @@
 // the nearest root found so far.
 //
 // Exactness: a query returns what brute_force.h returns, bit for bit. Each ellipsoid's box is its
-// axis-aligned bounding box grown by kCullingGap of each scale (slab_rays.h), a gap of 1e-3 in the unit
-// sphere's space; a root that intersect() reports lies within a few ulps of |o'| of the unit sphere (the
-// rounding of the mapped origin, plus the tangency allowance, ellipsoid.h), so its point lies deep inside the
-// box, and the slab test's own rounding (a few ulps of the box's distance) cannot move it out. A ray that
-// runs in a slab's plane, where the slab test's 0 * inf is NaN, cannot reach a box's inside at all. Both hold
-// only while the ray's origin is within culling_reach() smallest scales (|o'| <= 1e6 in double:
-// rounding ~1e-10 against the gap of 1e-3), as in sphere_bounds.h: a child is culled only for a ray from
-// within the guard distance of every ellipsoid under it, else visited unculled. A child whose box holds the
-// ray's origin is never culled either: from a point on the surface (|o'| = 1 within rounding) along its
+// axis-aligned bounding box grown by kCullingGap of each scale (unit_sphere_roots.h, slab_rays.h), a gap of
+// 1e-3 in the unit sphere's space; a root that intersect() reports lies within a few ulps of |o'| of the unit
+// sphere (the rounding of the mapped origin, plus the tangency allowance, ellipsoid.h), so its point lies
+// deep inside the box, and the slab test's own rounding (a few ulps of the box's distance) cannot move it
+// out. A ray that runs in a slab's plane, where the slab test's 0 * inf is NaN, cannot reach a box's inside
+// at all. Both hold only while the ray's origin is within culling_reach() smallest scales (|o'| <= 1e6 in
+// double: rounding ~1e-10 against the gap of 1e-3), as in sphere_bounds.h: a child is culled only for a ray
+// from within the guard distance of every ellipsoid under it, else visited unculled. A child whose box holds
+// the ray's origin is never culled either: from a point on the surface (|o'| = 1 within rounding) along its
 // tangent plane, o'.d' is a rounding residue, and where intersect() clamps the discriminant to zero (the
 // tangency allowance) its second root c/q is c / |o'.d'|, anywhere along the ray, far outside the box (a
 // shadow ray towards a light 2000 radii away leaves the box before t = 0.001 and is still "blocked" at t ~

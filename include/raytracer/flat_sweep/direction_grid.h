@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "raytracer/bit_scan.h"
+
 namespace rt {
 
 // A bounding sphere, in double (or wider) precision.

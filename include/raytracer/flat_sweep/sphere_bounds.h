@@ -99,8 +99,8 @@ public:
         }
     }
 
-    // The terms of every sphere that depend on the ray's origin alone: they are shared by
-    // all rays from one point (every eye ray; a hit point's shadow and reflected rays).
+    // The terms of every sphere that depend on the ray's origin alone, shared by the
+    // shadow rays from one point to every light (shadow_candidates()).
     struct OriginTerms {
         std::vector<C> px, py, pz;  // origin - centre
         std::vector<C> c;           // |origin - centre|^2 - radius^2
@@ -175,8 +175,10 @@ public:
         return count;
     }
 
-    // The same for a shadow ray towards light number light_index at t = 1: ellipsoids
-    // wholly beyond the light are culled too.
+    // Writes to out, in increasing order, the ellipsoids that the shadow ray from the
+    // point of t towards light number light_index (at t = 1) may meet, and returns how
+    // many: culled() as for any ray, and the ellipsoids wholly beyond the light too. out
+    // and cull: size() entries.
     std::size_t shadow_candidates(const OriginTerms& t, const Vec3<Real>& to_light, std::size_t light_index,
                                   std::uint32_t* out, C* cull) const {
         const C dx = C(to_light.x), dy = C(to_light.y), dz = C(to_light.z);
