@@ -52,9 +52,8 @@ public:
     // The reference that the tests hold this tracer's images to, byte for byte, is
     // whitted.h with brute_force.h (render(..., accelerate = false)).
     explicit Tracer(const Scene& scene)
-        : ellipsoids_(make_ellipsoids<Real>(scene)),
-          ambient_(V::from(scene.ambient)),
-          background_(V::from(scene.background)) {
+        : ellipsoids_(make_ellipsoids<Real>(scene)), background_(V::from(scene.background)) {
+        const V ambient = V::from(scene.ambient);
         lights_.reserve(scene.lights.size());
         std::vector<V> light_positions;
         for (const LightSpec& l : scene.lights) {
@@ -64,7 +63,7 @@ public:
         // Per ellipsoid, the ambient term and whether no light adds anything (see
         // hit_colours()).
         for (const Ellipsoid<Real>& e : ellipsoids_) {
-            Surface surface{ambient_term(ambient_, e), no_lighting(e), false, {}};
+            Surface surface{ambient_term(ambient, e), no_lighting(e), false, {}};
             surface.flat = surface.no_lighting && !(e.kr > 0);
             pixel_bytes(surface.ambient, surface.bytes);
             surfaces_.push_back(surface);
@@ -314,7 +313,6 @@ private:
     PairBlockers<Real> pair_blockers_;  // where packet_shadows_
     LightCones<C> light_cones_;         // where packet_shadows_
     std::vector<DirectionGrid<C>> light_grids_;
-    V ambient_;
     V background_;
 };
 

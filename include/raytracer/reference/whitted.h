@@ -26,7 +26,6 @@ public:
     // geometry: over make_ellipsoids<Real>(scene).
     Whitted(const Scene& scene, Geometry geometry)
         : geometry_(std::move(geometry)),
-          ambient_(V::from(scene.ambient)),
           background_(V::from(scene.background)),
           left_(Real(scene.left)),
           right_(Real(scene.right)),
@@ -38,10 +37,11 @@ public:
         lights_.reserve(scene.lights.size());
         for (const LightSpec& l : scene.lights)
             lights_.push_back({V::from(l.position), V::from(l.intensity)});
+        const V ambient = V::from(scene.ambient);
         materials_.reserve(scene.spheres.size());
         for (std::uint32_t i = 0; i < scene.spheres.size(); ++i) {
             const Ellipsoid<Real>& e = geometry_.ellipsoid(i);
-            materials_.push_back({ambient_term(ambient_, e), no_lighting(e)});
+            materials_.push_back({ambient_term(ambient, e), no_lighting(e)});
         }
     }
 
@@ -117,7 +117,7 @@ private:
     Geometry geometry_;  // holds the ellipsoids
     std::vector<Light> lights_;
     std::vector<Material> materials_;  // per ellipsoid
-    V ambient_, background_;
+    V background_;
     Real left_, right_, bottom_, top_, near_z_;
     int columns_, rows_;
 };
