@@ -24,11 +24,13 @@ inline bool blocks(const rt::Ellipsoid<double>& e, const rt::Vec3<double>& point
     return rt::blocks_segment(e, point, to_light);
 }
 
-// 3 to 16 random ellipsoids in front of the camera: the first a room (around the others
-// and the lights the culling tests place), every third negated in y, some paper-thin.
-inline std::vector<rt::Ellipsoid<double>> random_room_scene(std::mt19937& g) {
+// least to least + spread - 1 random ellipsoids in front of the camera: the first a room
+// (around the others and the lights the culling tests place), every third negated in y,
+// some paper-thin.
+inline std::vector<rt::Ellipsoid<double>> random_room_scene(std::mt19937& g, unsigned least = 3,
+                                                            unsigned spread = 14) {
     std::vector<rt::Ellipsoid<double>> ellipsoids;
-    const int n = 3 + static_cast<int>(g() % 14);
+    const int n = static_cast<int>(least + g() % spread);
     for (int i = 0; i < n; ++i) {
         rt::SphereSpec s{};
         s.centre = {uniform(g, -5, 5), uniform(g, -5, 5), uniform(g, -10, 0)};

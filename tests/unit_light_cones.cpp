@@ -28,9 +28,11 @@ constexpr std::uint64_t kLane[N] = {1, 2, 4, 8, 16, 32, 64, 128};
 TEST(light_cones_rule_out_only_ellipsoids_that_cannot_block) {
     long long wrong_lanes = 0, wrong_packets = 0, lane_pairs = 0, lanes_out = 0, packet_pairs = 0,
               packets_out = 0, blocked = 0;
-    for (unsigned seed = 1; seed <= 60; ++seed) {
+    for (unsigned seed = 1; seed <= 66; ++seed) {
         std::mt19937 g(seed);
-        const std::vector<rt::Ellipsoid<double>> ellipsoids = random_room_scene(g);
+        const bool crowd = seed > 60;  // 65 to 202 ellipsoids: EllipsoidSet's later words
+        const std::vector<rt::Ellipsoid<double>> ellipsoids =
+            crowd ? random_room_scene(g, 65, 138) : random_room_scene(g);
         std::vector<rt::Vec3<double>> lights(4);
         for (rt::Vec3<double>& light : lights)
             light = {uniform(g, -6, 6), uniform(g, -6, 6), uniform(g, -12, 2)};
@@ -66,12 +68,18 @@ TEST(light_cones_rule_out_only_ellipsoids_that_cannot_block) {
                     fz[k] = -(lights[l].z - pz[k]);
                     d[k] = std::sqrt(fx[k] * fx[k] + fy[k] * fy[k] + fz[k] * fz[k]);
                 }
-                const std::uint64_t all = (std::uint64_t(1) << ellipsoids.size()) - 1;
-                const std::uint64_t reached = cones.packet(l, lights[l], ball, all);
-                CHECK((reached & ~all) == 0);
+                // The width the renderer takes for this scene, and the widest.
+                const rt::WideSet reached =
+                    cones.packet(l, lights[l], ball, rt::WideSet::first(rt::WideSet::kCapacity));
+                if (!crowd) {
+                    const rt::NarrowSet narrow = cones.packet(l, lights[l], ball, rt::NarrowSet::first(64));
+                    for (std::size_t j = 0; j < 64; ++j) CHECK(narrow.contains(j) == reached.contains(j));
+                }
+                for (std::size_t j = ellipsoids.size(); j < rt::WideSet::kCapacity; ++j)
+                    CHECK(!reached.contains(j));  // only spheres there are
                 for (std::size_t j = 0; j < ellipsoids.size(); ++j) {
                     const std::uint64_t lanes = cones.lanes<N>(l, j, fx, fy, fz, d, kLane);
-                    const bool packet_in = (reached >> j) & 1U;
+                    const bool packet_in = reached.contains(j);
                     ++packet_pairs;
                     packets_out += !packet_in;
                     for (int k = 0; k < N; ++k) {
@@ -99,17 +107,18 @@ TEST(light_cones_rule_out_nothing_for_a_ball_with_a_nan) {
     const std::vector<rt::BoundingSphere<double>> spheres = {{0, 0, -5, 1}, {3, 0, -5, 1}};
     const std::vector<rt::Vec3<double>> lights = {{0, 5, -5}};
     const rt::LightCones<double> cones(spheres, lights);
+    const rt::NarrowSet both = rt::NarrowSet::first(2), every = rt::NarrowSet::first(64);
     double px[N], py[N], pz[N];
     for (int k = 0; k < N; ++k) px[k] = 10 + k, py[k] = -10, pz[k] = 10;
-    CHECK(cones.packet(0, lights[0], rt::LightCones<double>::ball<N>(px, py, pz), 3) == 0);  // far away
+    CHECK(cones.packet(0, lights[0], rt::LightCones<double>::ball<N>(px, py, pz), both).empty());  // far away
     px[3] = std::numeric_limits<double>::quiet_NaN();
     const auto ball = rt::LightCones<double>::ball<N>(px, py, pz);
     CHECK(!ball.usable);
-    CHECK(cones.packet(0, lights[0], ball, 3) == 3);
-    CHECK(cones.packet(0, lights[0], ball, ~std::uint64_t(0)) == 3);  // only spheres there are
+    CHECK(cones.packet(0, lights[0], ball, both) == both);
+    CHECK(cones.packet(0, lights[0], ball, every) == both);  // only spheres there are
     // A light inside the ball: nothing ruled out, but only spheres there are.
     px[3] = 0;
-    CHECK(cones.packet(0, {5, -10, 10}, rt::LightCones<double>::ball<N>(px, py, pz), ~std::uint64_t(0)) == 3);
+    CHECK(cones.packet(0, {5, -10, 10}, rt::LightCones<double>::ball<N>(px, py, pz), every) == both);
     // A NaN lane may meet every sphere.
     double fx[N], fy[N], fz[N], d[N];
     for (int k = 0; k < N; ++k) fx[k] = 0, fy[k] = 1, fz[k] = 0, d[k] = 1;  // away from both

@@ -1,11 +1,12 @@
 // The flat sweep (tracer.h, render.cpp) must not move a single byte: every image
-// rendered with its shortcuts (culling, light buffers, shadow prefilter, packets,
+// rendered with its shortcuts (culling, light cones, shadow prefilter, packets,
 // threads) equals the image of the reference (whitted.h with brute_force.h: every ray
 // against every ellipsoid), in float, double and long double, and is the same for any
 // number of threads.
 // Scenes: the course scenes (when present), the heavy benchmark scene, and random
 // scenes built to stress the margins (thin, far, negative-scaled and overlapping
-// ellipsoids, lights inside them or on their surface, the eye inside one).
+// ellipsoids, lights inside them or on their surface, the eye inside one), and scenes of
+// 65-200 ellipsoids.
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
@@ -17,8 +18,10 @@
 
 #include "check.h"
 #include "image_diff.h"
+#include "raytracer/flat_sweep/render_flat_sweep.h"
 #include "raytracer/parser.h"
 #include "raytracer/render.h"
+#include "scale_scenes.h"
 #include "stress_scenes.h"
 
 namespace {
@@ -61,6 +64,25 @@ TEST(random_scenes_match_the_plain_tracer) {
     for (unsigned seed = 1; seed <= 40; ++seed) {
         const rt::Scene scene = random_scene(seed);
         const std::string name = "random scene " + std::to_string(seed);
+        CHECK(same_as_plain<float>(name, scene));
+        CHECK(same_as_plain<double>(name, scene));
+        CHECK(same_as_plain<long double>(name, scene));
+    }
+}
+
+// Scenes of 65 to 200 ellipsoids, which the flat sweep renders with sets of ellipsoids
+// wider than a word (ellipsoid_set.h): random ones, and the first of sphereflake 3
+// (mirrors).
+TEST(scenes_of_many_ellipsoids_match_the_plain_tracer) {
+    std::vector<std::pair<std::string, rt::Scene>> scenes;
+    for (const int n : {65, 130, 200})
+        scenes.emplace_back("random " + std::to_string(n), scale::random_ellipsoids(n, 7));
+    rt::Scene flake = scale::sphereflake(3);
+    flake.spheres.resize(150);
+    scenes.emplace_back("the first 150 of sphereflake 3", flake);
+    for (auto& [name, scene] : scenes) {
+        scene.columns = 97, scene.rows = 73;
+        CHECK(!rt::takes_the_tree(scene));
         CHECK(same_as_plain<float>(name, scene));
         CHECK(same_as_plain<double>(name, scene));
         CHECK(same_as_plain<long double>(name, scene));

@@ -5,34 +5,32 @@
 // before that, the spheres that the segment from ANY point of a ball around a packet's
 // points may meet (one test per sphere, vector instructions over the spheres).
 //
-// WHY: the light buffers (direction_grid.h) gave each lane its cell's list: a face
-// choice, a division, two roundings to a cell and a gather, for every lane and light,
-// even where no sphere is near any lane's segment (half the packet-light pairs of the
-// heavy scene). The ball test rules those out with one scalar set-up and a vector loop
-// over the spheres, and the lane test is then only run for the spheres it leaves (under
-// two per pair on the heavy scene). Both look at the segment itself, not at a cell of
-// directions, and also rule out spheres beyond the point: fewer tries.
+// WHY: the ball test rules out with one scalar set-up and a vector loop over the
+// spheres every sphere near no lane's segment (half the packet-light pairs of the
+// heavy scene), and the lane test is then only run for the spheres it leaves (under two
+// per pair on the heavy scene). Both look at the segment itself, so they also rule out
+// spheres beyond the point.
 //
-// Exactness (the light buffers' argument): a segment from P to the light L that meets a
-// sphere (centre S, radius R, inflated over the ellipsoid: sphere_bounds.h) has a point X
-// in it, so the direction P - L lies within the sphere's angular radius b of S - L
-// (sin b = R / |S - L|), and |X - L| <= |P - L| gives |P - L| >= |S - L| - R. A ball
-// (c, r) of points seen from L lies within angle a (sin a = r / |c - L|) of c - L, at
-// distances up to |c - L| + r; its segments can meet the sphere only if the angle between
-// c - L and S - L is at most a + b, i.e. its cosine is at least cos(a + b) = cos a cos b -
-// sin a sin b (a + b <= pi). A sphere ruled out this way cannot be met by intersect() on
-// the segment, which is what the unculled renderer would test. Rounding of a few ulps is
-// covered by kMargin on the cosines and distances (as the light buffers' kAngleMargin);
-// a sphere around the light is seen everywhere, and NaN compares as "may meet".
+// Exactness: a segment from P to the light L that meets a sphere (centre S, radius R,
+// inflated over the ellipsoid: sphere_bounds.h) has a point X in it, so the direction P - L lies within the
+// sphere's angular radius b of S - L (sin b = R / |S - L|), and |X - L| <= |P - L| gives |P - L| >= |S - L| -
+// R. A ball (c, r) of points seen from L lies within angle a (sin a = r / |c - L|) of c - L, at distances up
+// to |c - L| + r; its segments can meet the sphere only if the angle between c - L and S - L is at most a +
+// b, i.e. its cosine is at least cos(a + b) = cos a cos b - sin a sin b (a + b <= pi). A sphere ruled out
+// this way cannot be met by intersect() on the segment, which is what the unculled renderer would test.
+// Rounding of a few ulps is covered by kMargin on the cosines and distances, far above it; a sphere around
+// the light is seen everywhere, and NaN compares as "may meet".
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
 #include "raytracer/compiler.h"
-#include "raytracer/flat_sweep/direction_grid.h"
+#include "raytracer/flat_sweep/bounding_sphere.h"
+#include "raytracer/flat_sweep/ellipsoid_set.h"
 #include "raytracer/vec3.h"
 
 namespace rt {
@@ -40,8 +38,6 @@ namespace rt {
 template <typename C>
 class LightCones {
 public:
-    static constexpr std::size_t kMaxSpheres = 64;  // the sets are 64-bit
-
     // A ball around a packet's points (usable = false: unknown, nothing is ruled out).
     struct Ball {
         C x = 0, y = 0, z = 0, radius = 0;
@@ -52,19 +48,18 @@ public:
 
     LightCones(const std::vector<BoundingSphere<C>>& spheres, const std::vector<Vec3<C>>& lights)
         : n_(spheres.size()), stride_((spheres.size() + 7) / 8 * 8) {
-        if (n_ > kMaxSpheres) return;
-        all_ = n_ == kMaxSpheres ? ~std::uint64_t(0) : (std::uint64_t(1) << n_) - 1;
+        if (n_ > WideSet::kCapacity) return;
         const std::size_t size = stride_ * lights.size();
         // Padding spheres are never met: no direction has cosine 2 with a unit vector.
         ux_.assign(size, 0), uy_.assign(size, 0), uz_.assign(size, 0);
         cos_b_.assign(size, 2), sin_b_.assign(size, 0), near_.assign(size, 0);
-        everywhere_.assign(lights.size(), 0);
+        std::vector<WideSet> everywhere(lights.size());
         for (std::size_t l = 0; l < lights.size(); ++l)
             for (std::size_t j = 0; j < n_; ++j) {
                 const BoundingSphere<C>& s = spheres[j];
                 const SeenSphere<C> v = seen_from(lights[l].x, lights[l].y, lights[l].z, s, kMargin);
                 if (v.everywhere) {  // around the light (or NaN)
-                    everywhere_[l] |= std::uint64_t(1) << j;
+                    everywhere[l].insert(j);
                     continue;
                 }
                 const std::size_t at = l * stride_ + j;
@@ -72,6 +67,13 @@ public:
                 sin_b_[at] = v.sin_b, cos_b_[at] = v.cos_b;
                 near_[at] = v.distance * (C(1) - C(kMargin)) - s.radius * (C(1) + C(kMargin));
             }
+        words_ = set_words(n_);
+        everywhere_.resize(lights.size() * words_);
+        for (std::size_t l = 0; l < lights.size(); ++l) {
+            std::uint64_t all[WideSet::kWords];
+            everywhere[l].to_words(all);
+            std::copy(all, all + words_, &everywhere_[l * words_]);
+        }
     }
 
     bool usable() const { return !everywhere_.empty(); }
@@ -99,11 +101,12 @@ public:
     }
 
     // Of light l: the spheres among `among` that a segment from some point of the ball
-    // to the light may meet.
-    std::uint64_t packet(std::size_t l, const Vec3<C>& light, const Ball& b, std::uint64_t among) const {
+    // to the light may meet. Set: as wide as set_words() of the spheres.
+    template <typename Set>
+    Set packet(std::size_t l, const Vec3<C>& light, const Ball& b, Set among) const {
         using std::sqrt;
-        among &= all_;  // only the spheres there are
-        if (among == 0 || !b.usable) return among;
+        among &= Set::first(n_);  // only the spheres there are
+        if (among.empty() || !b.usable) return among;
         const C wx = b.x - light.x, wy = b.y - light.y, wz = b.z - light.z;
         const C dist2 = wx * wx + wy * wy + wz * wz;
         const C dist = sqrt(dist2);
@@ -113,22 +116,24 @@ public:
         const C margin = dist * C(kMargin);
         const C reach = dist + b.radius;
         const std::size_t base = l * stride_;
-        std::uint64_t set = 0;
+        Set set = Set::from_words(&everywhere_[l * words_]);
         for (std::size_t start = 0; start < stride_; start += 8) {
             const C *ux = &ux_[base + start], *uy = &uy_[base + start], *uz = &uz_[base + start];
             const C *cos_b = &cos_b_[base + start], *sin_b = &sin_b_[base + start],
                     *near = &near_[base + start];
-            const std::uint64_t* bits = kBit + start;
+            std::uint64_t eight = 0;  // spheres start to start + 7
             RT_VECTOR_LOOP
             for (int j = 0; j < 8; ++j) {
                 const C along = wx * ux[j] + wy * uy[j] + wz * uz[j];
                 const C least = dist_cos_a * cos_b[j] - dist_sin_a * sin_b[j] - margin;
                 // Masks rather than ||, which keeps GCC's loop scalar.
                 const C out = (along < least ? C(1) : C(0)) + (reach < near[j] ? C(1) : C(0));
-                set |= out != 0 ? 0 : bits[j];
+                eight |= out != 0 ? 0 : kBit[j];
             }
+            set.insert_bits(start, eight);
         }
-        return (set | everywhere_[l]) & among;
+        set &= among;
+        return set;
     }
 
     // Of light l and sphere j: the lanes k (bit kLane[k]) whose segment from the point
@@ -136,7 +141,7 @@ public:
     template <int N>
     std::uint64_t lanes(std::size_t l, std::size_t j, const C* fx, const C* fy, const C* fz, const C* d,
                         const std::uint64_t (&lane_bit)[N]) const {
-        if ((everywhere_[l] >> j) & 1U) return ~std::uint64_t(0);
+        if ((everywhere_[l * words_ + j / 64] >> (j % 64)) & 1U) return ~std::uint64_t(0);
         const std::size_t at = l * stride_ + j;
         const C ux = ux_[at], uy = uy_[at], uz = uz_[at];
         const C least = cos_b_[at] - C(kMargin), near = near_[at];
@@ -152,19 +157,12 @@ public:
 
 private:
     static constexpr double kMargin = 1e-6;
-    static constexpr std::uint64_t bit(std::size_t j) { return std::uint64_t(1) << j; }
-    static constexpr std::uint64_t kBit[kMaxSpheres] = {
-        bit(0),  bit(1),  bit(2),  bit(3),  bit(4),  bit(5),  bit(6),  bit(7),  bit(8),  bit(9),  bit(10),
-        bit(11), bit(12), bit(13), bit(14), bit(15), bit(16), bit(17), bit(18), bit(19), bit(20), bit(21),
-        bit(22), bit(23), bit(24), bit(25), bit(26), bit(27), bit(28), bit(29), bit(30), bit(31), bit(32),
-        bit(33), bit(34), bit(35), bit(36), bit(37), bit(38), bit(39), bit(40), bit(41), bit(42), bit(43),
-        bit(44), bit(45), bit(46), bit(47), bit(48), bit(49), bit(50), bit(51), bit(52), bit(53), bit(54),
-        bit(55), bit(56), bit(57), bit(58), bit(59), bit(60), bit(61), bit(62), bit(63)};
+    static constexpr std::uint64_t kBit[8] = {1, 2, 4, 8, 16, 32, 64, 128};
 
     std::size_t n_ = 0, stride_ = 0;                      // spheres, and per light a multiple of 8 of them
-    std::uint64_t all_ = 0;                               // a bit for each sphere
     std::vector<C> ux_, uy_, uz_, cos_b_, sin_b_, near_;  // [light * stride_ + sphere]
-    std::vector<std::uint64_t> everywhere_;               // per light: spheres around it
+    std::size_t words_ = 0;                               // of a set: set_words(n_)
+    std::vector<std::uint64_t> everywhere_;               // per light, words_ words: spheres around it
 };
 
 }  // namespace rt

@@ -105,40 +105,57 @@ typename Tracer<Real>::PacketPlace Tracer<Real>::packet_place(const HitPacket<Re
     return place;
 }
 
-// Sets l.lit to the lanes of packet p (on ellipsoid i) with light li in front that no
-// ellipsoid shadows: all lanes at once where packet_shadows_ (shadow_lanes(), with
-// may_block and self_within from it; false where no lane is lit, so that the sums are
-// skipped), else lane by lane (in_shadow(); true: the sums select by l.lit).
+// For each light first + b of a batch (b < size) with lit_any[b]: sets batch[b].lit to the
+// lanes of packet p (on ellipsoid i) with the light in front that no ellipsoid shadows.
+// All lanes at once where packet_shadows_ (shadow_batch()), lit_any[b] then false where
+// no lane is lit, so that the sums are skipped; else lane by lane (in_shadow()), the sums
+// selecting by batch[b].lit.
 template <typename Real>
 template <int N>
-bool Tracer<Real>::light_lit(const HitPacket<Real, N>& p, LightLanes<Real, N>& l, std::uint32_t i,
-                             std::size_t li, std::uint64_t may_block, std::uint64_t self_within,
-                             TraceScratch<Real>& scratch) const {
+void Tracer<Real>::light_batch(const HitPacket<Real, N>& p, const PacketPlace& place, std::uint32_t i,
+                               std::size_t first, std::size_t size, LightLanes<Real, N>* batch, bool* lit_any,
+                               TraceScratch<Real>& scratch) const {
     if constexpr (std::is_same_v<C, Real>) {
-        if (packet_shadows_) return shadow_lanes(p, l, i, li, may_block, self_within, scratch) != 0;
-    }
-    // The lanes' cells in the light buffer at once: point - light = -(L - P) exactly, so
-    // these are the cells in_shadow() would find (in double or wider; float's buffers
-    // are looked up in double from the point).
-    std::int32_t cells[N];
-    for (std::int32_t& c : cells) c = -1;
-    if constexpr (std::is_same_v<C, Real>) {
-        if (use_grids_) {
-            Real fx[N], fy[N], fz[N];
-            for (int k = 0; k < N; ++k) fx[k] = -l.tx[k], fy[k] = -l.ty[k], fz[k] = -l.tz[k];
-            light_grids_[li].template cells<N>(fx, fy, fz, cells);
+        if (packet_shadows_) {
+            if (ellipsoids_.size() <= NarrowSet::kCapacity)
+                return shadow_batch<N, NarrowSet>(p, place, i, first, size, batch, lit_any, scratch);
+            return shadow_batch<N, WideSet>(p, place, i, first, size, batch, lit_any, scratch);
         }
     }
-    const std::uint64_t self_clear = p.self_clear(l);
-    for (int k = 0; k < p.count; ++k) {
-        if ((l.front & kLaneBits<N>.bit[k]) == 0) continue;
-        const V point{p.px[k], p.py[k], p.pz[k]}, to_light{l.tx[k], l.ty[k], l.tz[k]};
-        const bool shadowed =
-            in_shadow(point, to_light, li, scratch,
-                      (self_clear & kLaneBits<N>.bit[k]) != 0 ? i : TraceScratch<Real>::kNone, cells[k]);
-        if (!shadowed) l.lit |= kLaneBits<N>.bit[k];
+    for (std::size_t b = 0; b < size; ++b) {
+        if (!lit_any[b]) continue;
+        LightLanes<Real, N>& l = batch[b];
+        const std::uint64_t self_clear = p.self_clear(l);
+        for (int k = 0; k < p.count; ++k) {
+            if ((l.front & kLaneBits<N>.bit[k]) == 0) continue;
+            const V point{p.px[k], p.py[k], p.pz[k]}, to_light{l.tx[k], l.ty[k], l.tz[k]};
+            const std::uint32_t skip =
+                (self_clear & kLaneBits<N>.bit[k]) != 0 ? i : TraceScratch<Real>::kNone;
+            if (!in_shadow(point, to_light, first + b, scratch, skip)) l.lit |= kLaneBits<N>.bit[k];
+        }
     }
-    return true;
+}
+
+// light_batch() where packet_shadows_, with sets of Set's width (set_words()).
+template <typename Real>
+template <int N, typename Set>
+void Tracer<Real>::shadow_batch(const HitPacket<Real, N>& p, const PacketPlace& place, std::uint32_t i,
+                                std::size_t first, std::size_t size, LightLanes<Real, N>* batch,
+                                bool* lit_any, TraceScratch<Real>& scratch) const {
+    // Per light, the ellipsoids that some segment from the packet's ball to it may meet
+    // (independent chains, which overlap), then the lanes each of them shadows.
+    Set may_block[kLightBatch];
+    for (std::size_t b = 0; b < size; ++b) {
+        const std::size_t li = first + b;
+        if (lit_any[b])
+            may_block[b] = light_cones_.packet(
+                li, lights_[li].position, place.ball,
+                place.in_sphere ? pair_blockers_.template set<Set>(i, li) : Set::first(ellipsoids_.size()));
+    }
+    for (std::size_t b = 0; b < size; ++b)
+        if (lit_any[b])
+            lit_any[b] = shadow_lanes<N, Set>(p, batch[b], i, first + b, may_block[b], place.self_within,
+                                              scratch) != 0;
 }
 
 // The colours (Whitted::shade(), whitted.h) of up to N rays that hit ellipsoid i, ray k
@@ -170,11 +187,10 @@ void Tracer<Real>::hit_colours(std::uint32_t i, int count, const Real* ox, const
         // The lights in batches: first each light's terms (independent chains of
         // square roots and divisions, which overlap), then the shadow rays, then the
         // sums in the order of the lights.
-        constexpr std::size_t kBatch = 4;
-        LightLanes<Real, N> batch[kBatch];
-        bool lit_any[kBatch];
-        for (std::size_t first = 0; first < lights_.size(); first += kBatch) {
-            const std::size_t size = std::min(kBatch, lights_.size() - first);
+        LightLanes<Real, N> batch[kLightBatch];
+        bool lit_any[kLightBatch];
+        for (std::size_t first = 0; first < lights_.size(); first += kLightBatch) {
+            const std::size_t size = std::min(kLightBatch, lights_.size() - first);
             bool faces_any = false;
             for (std::size_t b = 0; b < size; ++b) {  // false: behind every ray's point
                 lit_any[b] = p.light(lights_[first + b].position, batch[b]);
@@ -182,23 +198,7 @@ void Tracer<Real>::hit_colours(std::uint32_t i, int count, const Real* ox, const
             }
             if (!faces_any) continue;
             if (!facing) p.facing_light(e), place = packet_place(p, i), facing = true;
-            // Per light, the ellipsoids that some segment from the packet's ball to it
-            // may meet (also independent chains).
-            std::uint64_t may_block[kBatch] = {};
-            if constexpr (std::is_same_v<C, Real>) {
-                if (packet_shadows_)
-                    for (std::size_t b = 0; b < size; ++b) {
-                        const std::size_t li = first + b;
-                        if (lit_any[b])
-                            may_block[b] = light_cones_.packet(
-                                li, lights_[li].position, place.ball,
-                                place.in_sphere ? pair_blockers_.set(i, li) : ~std::uint64_t(0));
-                    }
-            }
-            for (std::size_t b = 0; b < size; ++b)
-                if (lit_any[b])
-                    lit_any[b] =
-                        light_lit(p, batch[b], i, first + b, may_block[b], place.self_within, scratch);
+            light_batch(p, place, i, first, size, batch, lit_any, scratch);
             for (std::size_t b = 0; b < size; ++b) {
                 // No lane lit: the sums would keep every lane's colour (selects).
                 if (!lit_any[b]) continue;
@@ -213,7 +213,7 @@ void Tracer<Real>::hit_colours(std::uint32_t i, int count, const Real* ox, const
 // in_shadow() for the lanes of a packet with light li in front (l.front); sets l.lit
 // to the lanes not shadowed and returns them. Used where packet_shadows_ holds.
 //
-// WHY: in_shadow() tries the ellipsoids of the lane's cell one lane at a time, each
+// WHY: in_shadow() tries the ellipsoids its culling leaves one lane at a time, each
 // with decide()'s branches. Here each candidate ellipsoid is tried on all lanes at
 // once with decide_lanes() (vector instructions), and intersect() runs only for the
 // rare lanes it is unsure about. A lane is shadowed when SOME ellipsoid blocks its
@@ -223,12 +223,12 @@ void Tracer<Real>::hit_colours(std::uint32_t i, int count, const Real* ox, const
 // packet, below; the self ellipsoid where self_clear; those that enclose light and
 // point), so each lane gets the unculled renderer's boolean: the same bytes.
 // may_block: the ellipsoids that can block some lane at all (PairBlockers, then
-// LightCones::packet() for the packet's ball).
+// LightCones::packet() for the packet's ball), in a set of Set's width.
 // self_within: the lanes whose points Enclosures::points_within() ellipsoid self.
 template <typename Real>
-template <int N>
+template <int N, typename Set>
 std::uint64_t Tracer<Real>::shadow_lanes(const HitPacket<Real, N>& p, LightLanes<Real, N>& l,
-                                         std::uint32_t self, std::size_t li, std::uint64_t may_block,
+                                         std::uint32_t self, std::size_t li, Set may_block,
                                          std::uint64_t self_within, TraceScratch<Real>& scratch) const {
     using Bits = std::uint64_t;  // bit k for lane k
     // Selects of these constants rather than shifts by k: GCC then vectorises the
@@ -241,10 +241,9 @@ std::uint64_t Tracer<Real>::shadow_lanes(const HitPacket<Real, N>& p, LightLanes
     // point (contains_segments(), computed once), nor those where self_clear holds
     // (computed only where that matters).
     Bits self_free = enclosures_.light_within(li, self) ? self_within : 0;
-    if (((may_block >> self) & 1U) && (front & ~self_free) != 0) self_free |= p.self_clear(l);
-    if ((front & ~self_free) == 0) may_block &= ~(Bits(1) << self);
-    Bits candidates = may_block;
-    if (candidates == 0) {  // no ellipsoid can block any lane
+    if (may_block.contains(self) && (front & ~self_free) != 0) self_free |= p.self_clear(l);
+    if ((front & ~self_free) == 0) may_block.erase(self);
+    if (may_block.empty()) {  // no ellipsoid can block any lane
         l.lit = front;
         return front;
     }
@@ -253,13 +252,11 @@ std::uint64_t Tracer<Real>::shadow_lanes(const HitPacket<Real, N>& p, LightLanes
     for (int k = 0; k < N; ++k) fx[k] = -l.tx[k], fy[k] = -l.ty[k], fz[k] = -l.tz[k];
     // Per candidate j, the lanes whose segment may meet it (all first: independent
     // vector tests, which overlap).
-    Bits meets[LightCones<C>::kMaxSpheres];
+    Bits meets[Set::kCapacity];
     Bits reached = 0;
-    for (Bits rest = candidates; rest != 0; rest &= rest - 1) {
-        const int j = lowest_bit(rest);
-        reached |= meets[j] =
-            light_cones_.template lanes<N>(li, std::size_t(j), fx, fy, fz, l.distance, kLane);
-    }
+    may_block.for_each([&](std::size_t j) {
+        reached |= meets[j] = light_cones_.template lanes<N>(li, j, fx, fy, fz, l.distance, kLane);
+    });
     Bits waiting = front;  // lanes not yet known to be shadowed
     if ((reached & front) == 0) {
         l.lit = front;
@@ -267,7 +264,7 @@ std::uint64_t Tracer<Real>::shadow_lanes(const HitPacket<Real, N>& p, LightLanes
     }
     // Ellipsoid j against the waiting lanes whose segment may meet it; clears their
     // bits when blocked.
-    auto try_ellipsoid = [&](std::uint32_t j) {
+    auto try_ellipsoid = [&](std::size_t j) {
         Bits lanes = waiting & meets[j];
         if (j == self)
             lanes &= ~self_free;
@@ -289,17 +286,16 @@ std::uint64_t Tracer<Real>::shadow_lanes(const HitPacket<Real, N>& p, LightLanes
         }
         if (blocked == 0) return;
         waiting &= ~blocked;
-        scratch.last_occluder[li] = j;
+        scratch.last_occluder[li] = static_cast<std::uint32_t>(j);
     };
     // The last blocker of this light first (neighbouring pixels share their shadows),
-    // then the others in increasing order.
+    // then the others in increasing order, until every lane is shadowed.
     const std::uint32_t last = scratch.last_occluder[li];
-    if (last != TraceScratch<Real>::kNone && ((candidates >> last) & 1U)) {
+    if (last != TraceScratch<Real>::kNone && may_block.contains(last)) {
         try_ellipsoid(last);
-        candidates &= ~(Bits(1) << last);
+        may_block.erase(last);
     }
-    for (; candidates != 0 && waiting != 0; candidates &= candidates - 1)
-        try_ellipsoid(static_cast<std::uint32_t>(lowest_bit(candidates)));
+    may_block.for_each_while(try_ellipsoid, [&] { return waiting != 0; });
     // Lit: the light in front and no blocker found.
     l.lit = waiting;
     return waiting;

@@ -1,17 +1,14 @@
 // Per ellipsoid i and light l, the ellipsoids that can block a shadow ray from any point
-// of i's bounding sphere to l, as a bit set (up to 64 ellipsoids), computed once.
+// of i's bounding sphere to l, as an EllipsoidSet's words, computed once.
 //
-// WHY: a packet's shadow candidates came from each lane's light-buffer cell, a dozen
-// vector operations and a lookup per lane and light, even where the answer is known in
-// advance: in the course scenes a sphere's light often has no other sphere anywhere
-// near the way, and in the mirror room the room encloses every small ellipsoid and
-// every light. Two exact reasons to leave ellipsoid j out for all points P of the
-// bounding sphere S_i (centre c, radius R):
+// WHY: a packet's shadow candidates are often known in advance: in the course scenes a sphere's light often
+// has no other sphere anywhere near the way, and in the mirror room the room encloses every small ellipsoid
+// and every light. Two exact reasons to leave ellipsoid j out for all points P of the bounding sphere S_i
+// (centre c, radius R):
 // - every segment from such a P to L lies within distance R of the segment from c to
 //   L (P + t (L - P) is (1 - t)(P - c) away from c + t (L - c)), so j's bounding sphere
 //   (radius r_j, inflated by 1e-3 over the ellipsoid: sphere_bounds.h) cannot meet it
-//   when dist(c_j, [c, L]) > R + r_j; then intersect() finds no root on the segment, the
-//   argument of the light buffers;
+//   when dist(c_j, [c, L]) > R + r_j; then intersect() finds no root on the segment;
 // - j encloses the light (Enclosures::light_within()) and S_i with a margin of 1e-6 in
 //   j's unit space: then Enclosures::point_within() holds for each point of S_i, and
 //   contains_segment() clears j.
@@ -27,7 +24,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "raytracer/flat_sweep/direction_grid.h"
+#include "raytracer/flat_sweep/bounding_sphere.h"
+#include "raytracer/flat_sweep/ellipsoid_set.h"
 #include "raytracer/reference/ellipsoid.h"
 #include "raytracer/scene_precision.h"
 
@@ -37,8 +35,6 @@ template <typename Real>
 class PairBlockers {
 public:
     using C = AtLeastDouble<Real>;
-    static constexpr std::size_t kMaxEllipsoids = 64;
-
     PairBlockers() = default;
 
     // spheres: the inflated bounding spheres; encloses(l, j): Enclosures::light_within(l, j).
@@ -50,8 +46,9 @@ public:
         using std::abs;
         using std::sqrt;
         const std::size_t n = spheres.size();
-        if (n > kMaxEllipsoids) return;
-        sets_.assign(n * lights_, 0);
+        if (n > WideSet::kCapacity) return;
+        words_ = set_words(n);
+        sets_.assign(n * lights_ * words_, 0);
         for (std::size_t i = 0; i < n; ++i) {
             const BoundingSphere<C>& si = spheres[i];
             for (std::size_t l = 0; l < lights_; ++l) {
@@ -60,7 +57,7 @@ public:
                 const C uu = ux * ux + uy * uy + uz * uz;
                 const C magnitude = abs(si.x) + abs(si.y) + abs(si.z) + si.radius + abs(light.x) +
                                     abs(light.y) + abs(light.z);
-                std::uint64_t set = 0;
+                WideSet set;
                 for (std::size_t j = 0; j < n; ++j) {
                     const BoundingSphere<C>& sj = spheres[j];
                     const C wx = sj.x - si.x, wy = sj.y - si.y, wz = sj.z - si.z;
@@ -79,22 +76,27 @@ public:
                             sqrt(ox * ox + oy * oy + oz * oz) + si.radius / std::min({sx, sy, sz});
                         if (inside <= C(1) - C(1e-6)) may_block = false;
                     }
-                    if (may_block) set |= std::uint64_t(1) << j;
+                    if (may_block) set.insert(j);
                 }
-                sets_[i * lights_ + l] = set;
+                std::uint64_t words[WideSet::kWords];
+                set.to_words(words);
+                std::copy(words, words + words_, &sets_[(i * lights_ + l) * words_]);
             }
         }
     }
 
     bool usable() const { return !sets_.empty(); }
-    // The set of ellipsoid i and light l (usable() only).
-    std::uint64_t set(std::size_t i, std::size_t l) const { return sets_[i * lights_ + l]; }
+    // The set of ellipsoid i and light l (usable() only), as wide as set_words().
+    template <typename Set>
+    Set set(std::size_t i, std::size_t l) const {
+        return Set::from_words(&sets_[(i * lights_ + l) * words_]);
+    }
 
 private:
     static constexpr double kSlack = 1e-9;
 
-    std::size_t lights_ = 0;
-    std::vector<std::uint64_t> sets_;  // [ellipsoid * lights + light]
+    std::size_t lights_ = 0, words_ = 0;
+    std::vector<std::uint64_t> sets_;  // [(ellipsoid * lights + light) * words_ + word]
 };
 
 }  // namespace rt

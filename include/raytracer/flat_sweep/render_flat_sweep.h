@@ -12,15 +12,13 @@
 
 namespace rt {
 
-// Up to this many ellipsoids the flat sweep renders: between where the tree overtakes it on random
-// scenes (about 100) and on mirrored sphereflakes (about 230). Whole process, 2 threads, wall,
-// interleaved, medians of 15-21 (2026-12-02 19:30 UTC): random scenes (scale_scenes.h) of 100 / 150 /
-// 200 / 256 / 300 ellipsoids 11.5 / 15.8 / 19.5 / 21.2 / 26.3 ms flat against 10.4 / 13.4 / 15.3 /
-// 14.7 / 17.6 ms in the tree; the first 150 / 200 / 256 / 300 of sphereflake 3 10.1 / 11.8 / 15.1 /
-// 20.1 ms flat against 11.0 / 12.2 / 13.6 / 17.0 ms. Past a few thousand the flat sweep's tables stop
-// at their limits and it is many times slower (random 4,000: 3.9 s). Where the tiles' lanes are arrays
-// (no AVX: lanes.h) the tree is slower: 384 there (random 250 / 300 / 384, render alone: 32 / 39 / 43 ms
-// flat against 57 / 61 / 67 ms in the tree).
+// Up to this many ellipsoids the flat sweep renders: about where the tree overtakes it. Whole process,
+// 2 threads, wall, interleaved, medians of 15 (2026-12-03 13:30 UTC): random scenes (scale_scenes.h) of
+// 150 / 200 / 256 / 300 ellipsoids 9.7 / 13.6 / 18.5 / 21.7 ms flat against 12.7 / 15.5 / 16.7 / 16.8 ms
+// in the tree; the first 150 / 200 / 256 / 300 of sphereflake 3 (mirrors) 8.8 / 10.2 / 13.2 / 17.1 ms
+// flat against 12.0 / 12.7 / 13.5 / 16.3 ms. Where the tiles' lanes are arrays (no AVX: lanes.h) the
+// tree is slower: 384 there (random 250 / 300 / 384, render alone: 32 / 39 / 43 ms flat, before its
+// packets took shadows past 64 ellipsoids, against 57 / 61 / 67 ms in the tree).
 inline constexpr std::size_t kFlatSweepEllipsoids = Lanes<double, 16>::kNative ? 200 : 384;
 // and while ellipsoids x lights stay below this: the flat sweep keeps tables per
 // ellipsoid and light (about 100 bytes a pair), the tree nothing per pair.

@@ -19,7 +19,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "raytracer/flat_sweep/direction_grid.h"
+#include "raytracer/flat_sweep/bounding_sphere.h"
 #include "raytracer/reference/unit_sphere_roots.h"
 #include "raytracer/scene.h"
 #include "raytracer/vec3.h"

@@ -27,7 +27,7 @@
 #include <vector>
 
 #include "raytracer/compiler.h"
-#include "raytracer/flat_sweep/direction_grid.h"
+#include "raytracer/flat_sweep/bounding_sphere.h"
 #include "raytracer/flat_sweep/ray_cone.h"
 #include "raytracer/reference/ellipsoid.h"
 #include "raytracer/scene_precision.h"

@@ -9,7 +9,8 @@
 #include <vector>
 
 #include "raytracer/compiler.h"
-#include "raytracer/flat_sweep/direction_grid.h"
+#include "raytracer/flat_sweep/bounding_sphere.h"
+#include "raytracer/flat_sweep/ellipsoid_set.h"
 #include "raytracer/flat_sweep/enclosures.h"
 #include "raytracer/flat_sweep/hit_packet.h"
 #include "raytracer/flat_sweep/light_cones.h"
@@ -70,34 +71,23 @@ public:
         }
         bounds_ = SphereBounds<Real>(ellipsoids_, light_positions);
         for (const Ellipsoid<Real>& e : ellipsoids_) eye_origin_.push_back(mapped_origin(e, V{}));
-        // guarded: light buffers and packet shadows apply. Light buffers pay when there
-        // are more shadow rays than cells, and are not built where their tables would be
-        // huge (thousands of lights and ellipsoids), nor where no eye ray can hit
-        // anything (every ellipsoid off screen or behind the camera: no shadow ray at
-        // all; 0.04 ms of testBehind's 1.8 ms run), nor where rounding could approach
-        // the spheres' inflation (everything_guarded()).
-        const double cells = 6.0 * kGridCells * kGridCells;
-        const double pixels = double(scene.columns) * double(scene.rows);
+        enclosures_ = Enclosures<Real>(ellipsoids_, light_positions);
+        prefilter_ = ShadowPrefilter<Real>(ellipsoids_);
+        // Packets test their shadow rays together (shadow_lanes()) where some eye ray can
+        // hit something (else there is no shadow ray at all: 0.04 ms of testBehind's
+        // 1.8 ms run), where the image has at least as many pixels as there are
+        // ellipsoids (PairBlockers' set-up grows as ellipsoids squared times lights, a
+        // pixel's shadow rays without it as ellipsoids times lights), where rounding stays far below the
+        // spheres' inflation (everything_guarded()), and where the prefilter works (not in float); else each
+        // shadow ray is culled by the bounding spheres alone, as exact (in_shadow()).
         const std::vector<PixelRect> rects = screen_rects(scene);
         const bool any_seen = std::any_of(rects.begin(), rects.end(), [](const PixelRect& r) {
             return r.first_column <= r.last_column && r.first_row <= r.last_row;
         });
-        const bool guarded = any_seen && pixels >= cells &&
-                             cells * double(ellipsoids_.size()) * double(lights_.size()) <= 5e7 &&
-                             everything_guarded();
-        enclosures_ = Enclosures<Real>(ellipsoids_, light_positions);
-        prefilter_ = ShadowPrefilter<Real>(ellipsoids_);
-        // Packets test their shadow rays together (shadow_lanes()) where the same
-        // conditions hold, the prefilter works (not in float) and the ellipsoid sets fit
-        // in 64 bits (LightCones, PairBlockers).
-        packet_shadows_ = std::is_same_v<C, Real> && guarded && prefilter_.enabled() &&
-                          ellipsoids_.size() <= PairBlockers<Real>::kMaxEllipsoids &&
-                          ellipsoids_.size() <= LightCones<C>::kMaxSpheres;
-        // The light buffers serve the shadow rays tested one at a time; packets use
-        // LightCones instead, so with them the buffers are not built (18 us of testIllum's
-        // set-up, 165 us of the heavy scene's): in_shadow() without a buffer falls back
-        // on the bounding spheres, as exact.
-        if (guarded && !packet_shadows_) build_grids();
+        const double pixels = double(scene.columns) * double(scene.rows);
+        packet_shadows_ = std::is_same_v<C, Real> && any_seen && pixels >= double(ellipsoids_.size()) &&
+                          ellipsoids_.size() <= WideSet::kCapacity && prefilter_.enabled() &&
+                          everything_guarded();
         if (packet_shadows_) {
             const std::vector<BoundingSphere<C>> spheres = bounds_.spheres();
             std::vector<Vec3<C>> positions;
@@ -194,25 +184,17 @@ public:
     // Any blocker will do, so the search stops at the first; it tries first the one that
     // blocked this light last on this thread (neighbouring pixels share their shadows).
     // Ellipsoid number skip (kNone for none) is not tried: the caller knows it cannot block.
-    // cell: the ray's cell in the light's buffer when the caller has found it
-    // (DirectionGrid::cells(), many rays at once), else -1.
     RT_ALWAYS_INLINE bool in_shadow(const V& point, const V& to_light, std::size_t light_index,
                                     TraceScratch<Real>& scratch,
-                                    std::uint32_t skip = TraceScratch<Real>::kNone,
-                                    std::int32_t cell = -1) const {
+                                    std::uint32_t skip = TraceScratch<Real>::kNone) const {
         const std::uint32_t last = scratch.last_occluder[light_index];
         if (last != TraceScratch<Real>::kNone && last != skip && blocks(last, point, to_light)) return true;
-        const std::uint32_t* first;
-        const std::uint32_t* end;
-        if (use_grids_) {
-            // The light buffer: the ellipsoids near the line from the light to the point.
-            const DirectionGrid<C>& grid = light_grids_[light_index];
-            first = cell >= 0 ? grid.cell_list(cell, &end)
-                              : grid.list(C(point.x) - grid.x(), C(point.y) - grid.y(), C(point.z) - grid.z(),
-                                          &end);
-        } else {
-            first = shadow_candidates(point, to_light, light_index, scratch, &end);
-        }
+        // The ellipsoids whose bounding spheres the shadow ray may meet.
+        bounds_.prepare(point, scratch.origin);
+        const std::uint32_t* first = scratch.candidates.data();
+        const std::uint32_t* const end =
+            first + bounds_.shadow_candidates(scratch.origin, to_light, light_index,
+                                              scratch.candidates.data(), scratch.cull.data());
         for (; first != end; ++first) {
             const std::uint32_t i = *first;
             if (i == last || i == skip || enclosures_.contains_segment(point, light_index, i)) continue;
@@ -225,11 +207,9 @@ public:
     }
 
 private:
-    // Cells per cube-face side of the light buffers (direction_grid.h).
-    static constexpr int kGridCells = 16;
     // Whether rounding is far below the spheres' inflation (sphere_bounds.h) for the box
     // of everything a ray can start from or go to: the ellipsoids' spheres, the lights
-    // and the camera. Light buffers and packet shadows are exact only then.
+    // and the camera. Packet shadows are exact only then.
     bool everything_guarded() const {
         Vec3<C> lo{}, hi{};
         auto grow = [&](C x, C y, C z, C r) {
@@ -242,26 +222,6 @@ private:
         }
         for (const PointLight<Real>& l : lights_) grow(C(l.position.x), C(l.position.y), C(l.position.z), 0);
         return bounds_.guards(lo, hi);
-    }
-
-    // The light buffers, where everything_guarded().
-    void build_grids() {
-        const std::vector<BoundingSphere<C>> spheres = bounds_.spheres();
-        use_grids_ = true;
-        const auto cones = DirectionGrid<C>::cell_cones(kGridCells);
-        for (const PointLight<Real>& l : lights_)
-            light_grids_.emplace_back(C(l.position.x), C(l.position.y), C(l.position.z), spheres, kGridCells,
-                                      cones);
-    }
-
-    // Without light buffers: the ellipsoids whose bounding spheres the shadow ray may meet.
-    const std::uint32_t* shadow_candidates(const V& point, const V& to_light, std::size_t light_index,
-                                           TraceScratch<Real>& scratch, const std::uint32_t** end) const {
-        bounds_.prepare(point, scratch.origin);
-        const std::uint32_t* first = scratch.candidates.data();
-        *end = first + bounds_.shadow_candidates(scratch.origin, to_light, light_index,
-                                                 scratch.candidates.data(), scratch.cull.data());
-        return first;
     }
 
     // Whether ellipsoid i blocks the shadow ray; intersect() decides only where the
@@ -283,14 +243,21 @@ private:
                      const Real* dx, const Real* dy, const Real* dz, const Real* t, const bool* inside,
                      int reflections_left, TraceScratch<Real>& scratch, V* colours) const;
     struct PacketPlace;
+    // Lights are shaded in batches of this many (hit_colours()).
+    static constexpr std::size_t kLightBatch = 4;
     template <int N>
     PacketPlace packet_place(const HitPacket<Real, N>& p, std::uint32_t i) const;
     template <int N>
-    bool light_lit(const HitPacket<Real, N>& p, LightLanes<Real, N>& l, std::uint32_t i, std::size_t li,
-                   std::uint64_t may_block, std::uint64_t self_within, TraceScratch<Real>& scratch) const;
-    template <int N>
+    void light_batch(const HitPacket<Real, N>& p, const PacketPlace& place, std::uint32_t i,
+                     std::size_t first, std::size_t size, LightLanes<Real, N>* batch, bool* lit_any,
+                     TraceScratch<Real>& scratch) const;
+    template <int N, typename Set>
+    void shadow_batch(const HitPacket<Real, N>& p, const PacketPlace& place, std::uint32_t i,
+                      std::size_t first, std::size_t size, LightLanes<Real, N>* batch, bool* lit_any,
+                      TraceScratch<Real>& scratch) const;
+    template <int N, typename Set>
     std::uint64_t shadow_lanes(const HitPacket<Real, N>& p, LightLanes<Real, N>& l, std::uint32_t self,
-                               std::size_t li, std::uint64_t may_block, std::uint64_t self_within,
+                               std::size_t li, Set may_block, std::uint64_t self_within,
                                TraceScratch<Real>& scratch) const;
     template <int N>
     void reflections(HitPacket<Real, N>& p, Real kr, int reflections_left, TraceScratch<Real>& scratch) const;
@@ -306,13 +273,11 @@ private:
     std::vector<Surface> surfaces_;  // per ellipsoid
     SphereBounds<Real> bounds_;
     std::vector<MappedOrigin<Real>> eye_origin_;  // per ellipsoid, of the camera
-    bool use_grids_ = false;
-    bool packet_shadows_ = false;  // see shadow_lanes()
+    bool packet_shadows_ = false;                 // see shadow_lanes()
     Enclosures<Real> enclosures_;
     ShadowPrefilter<Real> prefilter_;
     PairBlockers<Real> pair_blockers_;  // where packet_shadows_
     LightCones<C> light_cones_;         // where packet_shadows_
-    std::vector<DirectionGrid<C>> light_grids_;
     V background_;
 };
 
