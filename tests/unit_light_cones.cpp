@@ -37,7 +37,7 @@ TEST(light_cones_rule_out_only_ellipsoids_that_cannot_block) {
         for (rt::Vec3<double>& light : lights)
             light = {uniform(g, -6, 6), uniform(g, -6, 6), uniform(g, -12, 2)};
         lights[3] = ellipsoids[1 + g() % (ellipsoids.size() - 1)].centre;  // inside an ellipsoid
-        const rt::SphereBounds<double> bounds(ellipsoids, lights);
+        const rt::SphereBounds<double> bounds(ellipsoids);
         std::vector<rt::BoundingSphere<double>> spheres;
         for (std::size_t i = 0; i < bounds.size(); ++i) spheres.push_back(bounds.sphere(i));
         const rt::LightCones<double> cones(spheres, lights);

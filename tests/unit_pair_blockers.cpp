@@ -30,7 +30,7 @@ TEST(pair_blockers_leave_out_only_ellipsoids_that_cannot_block) {
         std::vector<rt::Vec3<double>> lights(4);
         for (rt::Vec3<double>& light : lights)
             light = {uniform(g, -6, 6), uniform(g, -6, 6), uniform(g, -12, 2)};
-        const rt::SphereBounds<double> bounds(ellipsoids, lights);
+        const rt::SphereBounds<double> bounds(ellipsoids);
         const rt::Enclosures<double> enclosures(ellipsoids, lights);
         std::vector<rt::BoundingSphere<double>> spheres;
         for (std::size_t i = 0; i < bounds.size(); ++i) spheres.push_back(bounds.sphere(i));

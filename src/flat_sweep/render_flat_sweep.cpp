@@ -12,6 +12,7 @@
 #include "raytracer/flat_sweep/tracer.h"
 #include "raytracer/helper_pool.h"
 #include "raytracer/render.h"
+#include "raytracer/render_whitted.h"
 #include "raytracer/row_ring.h"
 
 namespace rt {
@@ -156,6 +157,8 @@ public:
     }
 
     Workspace<Real> workspace() const { return Workspace<Real>(tracer_, rects_.size(), scene_.columns); }
+    // Whether the flat sweep renders the scene at all (Tracer::can_render()).
+    bool can_render() const { return tracer_.can_render(); }
 
     // Renders bands until none is left; after_row(r) after each, r its last row.
     template <typename AfterRow>
@@ -265,6 +268,7 @@ template <typename Real>
 void render_flat_sweep_to(const Scene& scene, RowSink& sink, unsigned threads) {
     const unsigned most_threads = threads_asked(threads);
     FlatSweep<Real> sweep(scene, sink, most_threads);
+    if (!sweep.can_render()) return render_whitted_to<Real>(scene, sink, threads);
     // Each helper's working memory is made here, so that a helper thread allocates
     // nothing (its first allocation would set up a malloc arena of its own).
     std::vector<Workspace<Real>> helper_work;
@@ -299,9 +303,8 @@ void render_flat_sweep_to(const Scene& scene, RowSink& sink, unsigned threads) {
     sweep.flush();
 }
 
-// As render.cpp: double for raytracer.exe, float and long double for the tests.
+// As render.cpp: double for raytracer.exe, long double for the tests.
 #ifdef RAYTRACER_EXTRA_PRECISIONS
-template void render_flat_sweep_to<float>(const Scene&, RowSink&, unsigned);
 template void render_flat_sweep_to<long double>(const Scene&, RowSink&, unsigned);
 #else
 template void render_flat_sweep_to<double>(const Scene&, RowSink&, unsigned);

@@ -19,6 +19,7 @@
 #include "check.h"
 #include "image_diff.h"
 #include "raytracer/flat_sweep/render_flat_sweep.h"
+#include "raytracer/flat_sweep/tracer.h"
 #include "raytracer/parser.h"
 #include "raytracer/render.h"
 #include "scale_scenes.h"
@@ -86,6 +87,22 @@ TEST(scenes_of_many_ellipsoids_match_the_plain_tracer) {
         CHECK(same_as_plain<float>(name, scene));
         CHECK(same_as_plain<double>(name, scene));
         CHECK(same_as_plain<long double>(name, scene));
+    }
+}
+
+// Scenes whose shadow rays the flat sweep's packets cannot test exactly or cheaply go
+// from it to the tree (Tracer::can_render()): a disc so thin that rounding could reach
+// the bounding spheres' gap, and an image of fewer pixels than ellipsoids.
+TEST(scenes_the_flat_sweep_hands_to_the_tree_match_the_plain_tracer) {
+    rt::Scene thin = random_scene(3);
+    thin.spheres[0].scale.z = 1e-9;
+    rt::Scene tiny = scale::random_ellipsoids(100, 7);
+    tiny.columns = 9, tiny.rows = 9;
+    for (const rt::Scene& scene : {thin, tiny}) {
+        CHECK(!rt::takes_the_tree(scene));
+        CHECK(!rt::Tracer<double>(scene).can_render());
+        CHECK(same_as_plain<double>("handed to the tree", scene));
+        CHECK(same_as_plain<long double>("handed to the tree", scene));
     }
 }
 

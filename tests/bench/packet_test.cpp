@@ -1,8 +1,9 @@
 // Tracer::eye_hit_pixels() shades up to kPacket eye-ray hits at once with vector
 // instructions (hit_packet.h); each pixel's colour must equal, bit for bit, the
 // reference's for that pixel alone (Whitted::eye_ray_colour(), whitted.h), and its bytes
-// to_byte() of it, in float, double and long double: for packets of neighbouring
-// pixels, of pixels scattered over a row, and partial packets.
+// to_byte() of it, in double and long double (the flat sweep's precisions): for packets
+// of neighbouring pixels, of pixels scattered over a row, and partial packets. Scenes the
+// flat sweep hands to the tree (Tracer::can_render()) are left out.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -101,8 +102,15 @@ long long differing_bytes(const rt::Scene& scene, int packet, int stride) {
     return differing;
 }
 
+// Scenes left out because the flat sweep hands them to the tree.
+int left_out = 0;
+
 template <typename Real>
 bool packets_match(const std::string& name, const rt::Scene& scene) {
+    if (!rt::Tracer<Real>(scene).can_render()) {
+        ++left_out;
+        return true;
+    }
     bool all = true;
     // Full packets of neighbours, full packets of scattered pixels, partial packets.
     const std::pair<int, int> shapes[] = {{rt::kPacket, 1}, {rt::kPacket, 3}, {3, 1}};
@@ -119,19 +127,20 @@ bool packets_match(const std::string& name, const rt::Scene& scene) {
 }  // namespace
 
 TEST(packets_of_scene_file_pixels_match_single_pixels) {
+    left_out = 0;
     for (const auto& [name, scene] : stress::file_scenes(83, 67)) {
-        CHECK(packets_match<float>(name, scene));
         CHECK(packets_match<double>(name, scene));
         CHECK(packets_match<long double>(name, scene));
     }
+    CHECK_EQ(left_out, 0);
 }
 
 TEST(packets_of_random_scene_pixels_match_single_pixels) {
     for (unsigned seed = 1; seed <= 40; ++seed) {
         const rt::Scene scene = stress::random_scene(seed);
         const std::string name = "random scene " + std::to_string(seed);
-        CHECK(packets_match<float>(name, scene));
         CHECK(packets_match<double>(name, scene));
         CHECK(packets_match<long double>(name, scene));
     }
+    CHECK(left_out <= 8);  // the scenes are built to stress the shortcuts, not to avoid them
 }

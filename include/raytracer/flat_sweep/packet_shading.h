@@ -69,12 +69,12 @@ void Tracer<Real>::nearest_hits(const Real* ox, const Real* oy, const Real* oz, 
     for (int k = 0; k < N; ++k) t[k] = best[k], inside[k] = far_root[k] != 0;
 }
 
-// Where a packet's points on ellipsoid i lie, for the shadow rays of every light (where
-// packet_shadows_): a ball around them, for LightCones::packet(); whether they all lie
-// in the ellipsoid's bounding sphere, so that pair_blockers_'s sets apply (hit points
-// lie on the ellipsoid: always, but checked, as the sets' argument needs it); and the
-// lanes whose points lie within the ellipsoid for Enclosures, once for all lights (the
-// mirror room's points are on it, so within it for every light it encloses).
+// Where a packet's points on ellipsoid i lie, for the shadow rays of every light: a ball
+// around them, for LightCones::packet(); whether they all lie in the ellipsoid's
+// bounding sphere, so that pair_blockers_'s sets apply (hit points lie on the
+// ellipsoid: always, but checked, as the sets' argument needs it); and the lanes whose
+// points lie within the ellipsoid for Enclosures, once for all lights (the mirror
+// room's points are on it, so within it for every light it encloses).
 template <typename Real>
 struct Tracer<Real>::PacketPlace {
     typename LightCones<C>::Ball ball;
@@ -87,56 +87,25 @@ template <int N>
 typename Tracer<Real>::PacketPlace Tracer<Real>::packet_place(const HitPacket<Real, N>& p,
                                                               std::uint32_t i) const {
     PacketPlace place;
-    if constexpr (std::is_same_v<C, Real>) {
-        if (!packet_shadows_) return place;
-        place.ball = LightCones<C>::template ball<N>(p.px, p.py, p.pz);
-        const BoundingSphere<C> b = bounds_.sphere(i);
-        const C radius2 = b.radius * b.radius;
-        std::uint64_t outside = 0;  // NaN points count as outside
-        RT_VECTOR_LOOP
-        for (int k = 0; k < N; ++k) {
-            const C x = p.px[k] - b.x, y = p.py[k] - b.y, z = p.pz[k] - b.z;
-            outside |= x * x + y * y + z * z <= radius2 ? 0 : kLaneBits<N>.bit[k];
-        }
-        place.in_sphere = outside == 0;
-        if (enclosures_.encloses_a_light(i))
-            place.self_within = enclosures_.template points_within<N>(p.px, p.py, p.pz, i, kLaneBits<N>.bit);
+    place.ball = LightCones<C>::template ball<N>(p.px, p.py, p.pz);
+    const BoundingSphere<C> b = bounds_.sphere(i);
+    const C radius2 = b.radius * b.radius;
+    std::uint64_t outside = 0;  // NaN points count as outside
+    RT_VECTOR_LOOP
+    for (int k = 0; k < N; ++k) {
+        const C x = p.px[k] - b.x, y = p.py[k] - b.y, z = p.pz[k] - b.z;
+        outside |= x * x + y * y + z * z <= radius2 ? 0 : kLaneBits<N>.bit[k];
     }
+    place.in_sphere = outside == 0;
+    if (enclosures_.encloses_a_light(i))
+        place.self_within = enclosures_.template points_within<N>(p.px, p.py, p.pz, i, kLaneBits<N>.bit);
     return place;
 }
 
 // For each light first + b of a batch (b < size) with lit_any[b]: sets batch[b].lit to the
-// lanes of packet p (on ellipsoid i) with the light in front that no ellipsoid shadows.
-// All lanes at once where packet_shadows_ (shadow_batch()), lit_any[b] then false where
-// no lane is lit, so that the sums are skipped; else lane by lane (in_shadow()), the sums
-// selecting by batch[b].lit.
-template <typename Real>
-template <int N>
-void Tracer<Real>::light_batch(const HitPacket<Real, N>& p, const PacketPlace& place, std::uint32_t i,
-                               std::size_t first, std::size_t size, LightLanes<Real, N>* batch, bool* lit_any,
-                               TraceScratch<Real>& scratch) const {
-    if constexpr (std::is_same_v<C, Real>) {
-        if (packet_shadows_) {
-            if (ellipsoids_.size() <= NarrowSet::kCapacity)
-                return shadow_batch<N, NarrowSet>(p, place, i, first, size, batch, lit_any, scratch);
-            return shadow_batch<N, WideSet>(p, place, i, first, size, batch, lit_any, scratch);
-        }
-    }
-    for (std::size_t b = 0; b < size; ++b) {
-        if (!lit_any[b]) continue;
-        LightLanes<Real, N>& l = batch[b];
-        const std::uint64_t self_clear = p.self_clear(l);
-        for (int k = 0; k < p.count; ++k) {
-            if ((l.front & kLaneBits<N>.bit[k]) == 0) continue;
-            const V point{p.px[k], p.py[k], p.pz[k]}, to_light{l.tx[k], l.ty[k], l.tz[k]};
-            const std::uint32_t skip =
-                (self_clear & kLaneBits<N>.bit[k]) != 0 ? i : TraceScratch<Real>::kNone;
-            if (!in_shadow(point, to_light, first + b, scratch, skip)) l.lit |= kLaneBits<N>.bit[k];
-        }
-    }
-}
-
-// light_batch() where packet_shadows_, with sets of Set's width (set_words()).
+// lanes of packet p (on ellipsoid i) with the light in front that no ellipsoid shadows,
+// and lit_any[b] to whether there are any (else the sums are skipped). Set: the width
+// of the scene's ellipsoid sets (set_words()).
 template <typename Real>
 template <int N, typename Set>
 void Tracer<Real>::shadow_batch(const HitPacket<Real, N>& p, const PacketPlace& place, std::uint32_t i,
@@ -198,7 +167,10 @@ void Tracer<Real>::hit_colours(std::uint32_t i, int count, const Real* ox, const
             }
             if (!faces_any) continue;
             if (!facing) p.facing_light(e), place = packet_place(p, i), facing = true;
-            light_batch(p, place, i, first, size, batch, lit_any, scratch);
+            if (ellipsoids_.size() <= NarrowSet::kCapacity)
+                shadow_batch<N, NarrowSet>(p, place, i, first, size, batch, lit_any, scratch);
+            else
+                shadow_batch<N, WideSet>(p, place, i, first, size, batch, lit_any, scratch);
             for (std::size_t b = 0; b < size; ++b) {
                 // No lane lit: the sums would keep every lane's colour (selects).
                 if (!lit_any[b]) continue;
@@ -210,18 +182,17 @@ void Tracer<Real>::hit_colours(std::uint32_t i, int count, const Real* ox, const
     for (int k = 0; k < count; ++k) colours[k] = {p.r[k], p.g[k], p.b[k]};
 }
 
-// in_shadow() for the lanes of a packet with light li in front (l.front); sets l.lit
-// to the lanes not shadowed and returns them. Used where packet_shadows_ holds.
+// Whether the shadow rays of the lanes of a packet with light li in front (l.front)
+// are blocked: sets l.lit to the lanes not shadowed and returns them.
 //
-// WHY: in_shadow() tries the ellipsoids its culling leaves one lane at a time, each
-// with decide()'s branches. Here each candidate ellipsoid is tried on all lanes at
-// once with decide_lanes() (vector instructions), and intersect() runs only for the
-// rare lanes it is unsure about. A lane is shadowed when SOME ellipsoid blocks its
-// segment, and each test gives intersect()'s exact answer, so the order of the tries
-// does not matter; a lane is left untried only for ellipsoids that cannot block it
-// (outside its segment's cone, LightCones::lanes(), or ruled out for the whole
-// packet, below; the self ellipsoid where self_clear; those that enclose light and
-// point), so each lane gets the unculled renderer's boolean: the same bytes.
+// WHY: each candidate ellipsoid is tried on all lanes at once with decide_lanes()
+// (vector instructions), and intersect() runs only for the rare lanes it is unsure
+// about. A lane is shadowed when SOME ellipsoid blocks its segment, and each test gives
+// intersect()'s exact answer, so the order of the tries does not matter; a lane is left
+// untried only for ellipsoids that cannot block it (outside its segment's cone,
+// LightCones::lanes(), or ruled out for the whole packet, below; the self ellipsoid
+// where self_clear; those that enclose light and point), so each lane gets the
+// unculled renderer's boolean: the same bytes.
 // may_block: the ellipsoids that can block some lane at all (PairBlockers, then
 // LightCones::packet() for the packet's ball), in a set of Set's width.
 // self_within: the lanes whose points Enclosures::points_within() ellipsoid self.

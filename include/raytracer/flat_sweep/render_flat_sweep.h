@@ -41,7 +41,9 @@ inline bool takes_the_tree(const Scene& scene) {
            !lengths_fit_the_flat_sweep(scene);
 }
 
-// Instantiated for float, double and long double; threads = 0: see render_to().
+// In double and long double (float takes the tree); threads = 0: see render_to(). A
+// scene whose shadow rays the flat sweep's packets cannot test exactly goes to the tree
+// from here (Tracer::can_render()).
 template <typename Real>
 void render_flat_sweep_to(const Scene& scene, RowSink& sink, unsigned threads);
 

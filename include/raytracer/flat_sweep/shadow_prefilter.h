@@ -6,11 +6,10 @@
 // quotients) gives them, as intersect() does, to within about 1e-6 when the origin is
 // not far away (|o'| <= 100) and the ray not too short (|d'| >= 1e-2). Where the mapped
 // line clearly misses (1 - |l|^2 < -1e-6) or clearly crosses (> 1e-3) and every root
-// is at least 1e-4 from
-// 0.001 and 1, intersect() must give the same answer (compared times a = |d'|^2, so
-// without any division); everything else (tangent rays,
-// roots near the limits, float, far or tiny rays) runs intersect() as before. Images
-// stay bit-identical. Measured gain in docs/speed.md.
+// is at least 1e-4 from 0.001 and 1, intersect() must give the same answer (compared
+// times a = |d'|^2, so without any division); everything else (tangent rays, roots near
+// the limits, far or tiny rays) runs intersect(). Images stay bit-identical. Measured
+// gain in docs/speed.md.
 #pragma once
 
 #include <cmath>
@@ -20,7 +19,6 @@
 
 #include "raytracer/reference/ellipsoid.h"
 #include "raytracer/reference/spec_rules.h"
-#include "raytracer/scene_precision.h"
 #include "raytracer/vec3.h"
 
 namespace rt {
@@ -28,65 +26,36 @@ namespace rt {
 template <typename Real>
 class ShadowPrefilter {
 public:
-    using C = AtLeastDouble<Real>;
-    enum Answer { kUnsure, kClear, kBlocked };
+    // float's own rounding (1e-7 relative) is too close to the margins below.
+    static_assert(std::numeric_limits<Real>::digits >= std::numeric_limits<double>::digits,
+                  "the prefilter needs double or wider");
+    using C = Real;
 
     ShadowPrefilter() = default;
 
     explicit ShadowPrefilter(const std::vector<Ellipsoid<Real>>& ellipsoids) {
-        // float's own rounding (1e-7 relative) is too close to the margins below.
-        if (std::numeric_limits<Real>::digits < std::numeric_limits<double>::digits) return;
         for (const Ellipsoid<Real>& e : ellipsoids) {
-            centre_.push_back(Vec3<C>::from(e.centre));
-            inverse_scale_.push_back({C(1) / C(e.scale.x), C(1) / C(e.scale.y), C(1) / C(e.scale.z)});
+            centre_.push_back(e.centre);
+            inverse_scale_.push_back({C(1) / e.scale.x, C(1) / e.scale.y, C(1) / e.scale.z});
         }
     }
 
-    // Whether ellipsoid i blocks the shadow ray point + t to_light, 0.001 < t < 1.
-    // The roots' common factor 1/a is multiplied out (a > 0): a t = -b -+ sqrt(b^2 - a c)
-    // against a times each limit. With |o'|^2 <= 1e4 and a >= 1e-4, b^2 - a c is off by a
-    // few ulps of a |o'|^2, so h = (b^2 - a c) / a by under 1e-11 and the roots by under
-    // 1e-8: far inside the margins.
-    Answer decide(const Vec3<Real>& point, const Vec3<Real>& to_light, std::size_t i) const {
-        if (centre_.empty()) return kUnsure;
-        using std::sqrt;
-        const Vec3<C> o = (Vec3<C>::from(point) - centre_[i]) * inverse_scale_[i];
-        const Vec3<C> d = Vec3<C>::from(to_light) * inverse_scale_[i];
-        const C o2 = dot(o, o), a = dot(d, d);
-        if (!(o2 <= C(1e4) && a >= C(1e-4))) return kUnsure;
-        const C b = dot(o, d);
-        const C disc = b * b - a * (o2 - C(1));  // a h
-        if (disc < C(-1e-6) * a) return kClear;
-        if (!(disc > C(1e-3) * a)) return kUnsure;
-        const C root = sqrt(disc);
-        const C near = -b - root, far = -b + root;  // a times the roots
-        const C lo = C(kShadowRayMinT), margin = C(1e-4);
-        const C in_lo = (lo + margin) * a, in_hi = (C(1) - margin) * a;
-        const C out_lo = (lo - margin) * a, out_hi = (C(1) + margin) * a;
-        auto clearly_in = [&](C t) { return t > in_lo && t < in_hi; };
-        auto clearly_out = [&](C t) { return t < out_lo || t > out_hi; };
-        if (clearly_in(near) || clearly_in(far)) return kBlocked;
-        if (clearly_out(near) && clearly_out(far)) return kClear;
-        return kUnsure;
-    }
-
-    // decide_lanes()'s answers, lane k in element k (masks are 1 or 0).
+    // The answers for N rays, lane k in element k (masks are 1 or 0).
     template <int N>
     struct Lanes {
         C blocked[N], unsure[N];
     };
 
-    // Whether decide() can answer at all (not in float).
-    bool enabled() const { return !centre_.empty(); }
-
-    // decide() for N rays at once against ellipsoid i (enabled() only), ray k from
-    // (px, py, pz)[k] along (tx, ty, tz)[k]: blocked[k] = 1 where decide() answers
-    // kBlocked, unsure[k] = 1 where kUnsure (else 0).
-    // WHY a second copy: decide() branches after each test, so a loop over rays calling it
-    // stays scalar. Here every lane does decide()'s operations in decide()'s order and its
-    // branches become products of 0/1 masks (doubles: bool temporaries and && keep GCC's
-    // loops scalar), so the loop runs as vector instructions; a lane whose branch decide()
-    // would not reach computes values (even NaN from a negative sqrt) that no mask takes.
+    // Whether ellipsoid i blocks the shadow ray point + t to_light, 0.001 < t < 1, for N
+    // rays at once, ray k from (px, py, pz)[k] along (tx, ty, tz)[k]: blocked[k] = 1 where
+    // it clearly does, unsure[k] = 1 where intersect() must decide (else 0).
+    // The roots' common factor 1/a is multiplied out (a > 0): a t = -b -+ sqrt(b^2 - a c)
+    // against a times each limit. With |o'|^2 <= 1e4 and a >= 1e-4, b^2 - a c is off by a
+    // few ulps of a |o'|^2, so h = (b^2 - a c) / a by under 1e-11 and the roots by under
+    // 1e-8: far inside the margins.
+    // The tests' branches are products of 0/1 masks (doubles: bool temporaries and && keep
+    // GCC's loops scalar), so the loop runs as vector instructions; a lane that a branch
+    // would have stopped computes values (even NaN from a negative sqrt) that no mask takes.
     template <int N>
     Lanes<N> decide_lanes(const C* px, const C* py, const C* pz, const C* tx, const C* ty, const C* tz,
                           std::size_t i) const {

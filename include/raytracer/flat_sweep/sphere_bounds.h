@@ -3,17 +3,14 @@
 //
 // WHY: intersect() costs four divisions and a square root per ray and ellipsoid; a ray
 // that clearly misses a slightly inflated bounding sphere (or has it wholly behind its
-// origin, or wholly beyond the light for a shadow ray) is rejected here with a few
-// multiplications and no division. The sphere of an ellipsoid is centred on it with
-// radius max|s| (1 + kCullingGap); it contains the ellipsoid with a gap of at least
-// kCullingGap in the unit sphere's space, far more than the rounding of intersect() (a
-// few ulps, plus its tangent bound, unit_sphere_roots.h: at most ~64 epsilon times the
-// distance in radii, 1e-8 within the reach below). So every culled test is one that
-// intersect() would have answered "no usable root", and images stay bit-identical.
-// Where the ray's origin (or light) is so far from an ellipsoid, relative to its
-// smallest scale, that rounding could approach that gap, nothing is culled.
-// Measured on tests/bench/heavy.txt (15 ellipsoids, 10 lights), single thread: see
-// docs/speed.md.
+// origin) is rejected here with a few multiplications and no division. The sphere of an ellipsoid is centred
+// on it with radius max|s| (1 + kCullingGap); it contains the ellipsoid with a gap of at least kCullingGap in
+// the unit sphere's space, far more than the rounding of intersect() (a few ulps, plus its tangent bound,
+// unit_sphere_roots.h: at most ~64 epsilon times the distance in radii, 1e-8 within the reach below). So
+// every culled test is one that intersect() would have answered "no usable root", and images stay
+// bit-identical. Where the ray's origin is so far from an ellipsoid, relative to its smallest scale, that
+// rounding could approach that gap, nothing is culled. Measured on tests/bench/heavy.txt (15 ellipsoids, 10
+// lights), single thread: see docs/speed.md.
 //
 // The arrays are a structure of arrays, so that the per-ray loop over all ellipsoids
 // vectorises (GCC -O2/-O3: packed multiplies and compares, no gathers).
@@ -42,7 +39,7 @@ public:
 
     SphereBounds() = default;
 
-    SphereBounds(const std::vector<Ellipsoid<Real>>& ellipsoids, const std::vector<Vec3<Real>>& lights) {
+    explicit SphereBounds(const std::vector<Ellipsoid<Real>>& ellipsoids) {
         const C reach = C(culling_reach<Real>());  // in smallest scales (unit_sphere_roots.h)
         const std::size_t n = ellipsoids.size();
         cx_.resize(n), cy_.resize(n), cz_.resize(n), radius_.resize(n), radius2_.resize(n), guard2_.resize(n);
@@ -57,16 +54,6 @@ public:
             radius2_[i] = radius * radius;
             guard2_[i] = smallest * smallest;
         }
-        // For each light and ellipsoid: whether the light is outside the sphere (and near
-        // enough for the rounding argument), so a sphere wholly beyond it can be culled.
-        light_outside_.resize(lights.size() * n);
-        for (std::size_t l = 0; l < lights.size(); ++l)
-            for (std::size_t i = 0; i < n; ++i) {
-                const C dx = C(lights[l].x) - cx_[i], dy = C(lights[l].y) - cy_[i],
-                        dz = C(lights[l].z) - cz_[i];
-                const C d2 = dx * dx + dy * dy + dz * dz;
-                light_outside_[l * n + i] = d2 > radius2_[i] && d2 <= guard2_[i] ? C(1) : C(0);
-            }
     }
 
     std::size_t size() const { return cx_.size(); }
@@ -96,27 +83,6 @@ public:
             const C dy = std::max(abs(lo.y - cy_[i]), abs(hi.y - cy_[i]));
             const C dz = std::max(abs(lo.z - cz_[i]), abs(hi.z - cz_[i]));
             return dx * dx + dy * dy + dz * dz <= guard2_[i];
-        }
-    }
-
-    // The terms of every sphere that depend on the ray's origin alone, shared by the
-    // shadow rays from one point to every light (shadow_candidates()).
-    struct OriginTerms {
-        std::vector<C> px, py, pz;  // origin - centre
-        std::vector<C> c;           // |origin - centre|^2 - radius^2
-        std::vector<C> in_reach;    // 1 when the origin is outside the sphere but within the guard
-    };
-
-    void prepare(const Vec3<Real>& origin, OriginTerms& t) const {
-        const std::size_t n = size();
-        t.px.resize(n), t.py.resize(n), t.pz.resize(n), t.c.resize(n), t.in_reach.resize(n);
-        const C ox = C(origin.x), oy = C(origin.y), oz = C(origin.z);
-        for (std::size_t i = 0; i < n; ++i) {
-            const C px = ox - cx_[i], py = oy - cy_[i], pz = oz - cz_[i];
-            const C p2 = px * px + py * py + pz * pz;
-            t.px[i] = px, t.py[i] = py, t.pz[i] = pz;
-            t.c[i] = p2 - radius2_[i];
-            t.in_reach[i] = in_reach(p2, radius2_[i], guard2_[i]);
         }
     }
 
@@ -175,25 +141,6 @@ public:
         return count;
     }
 
-    // Writes to out, in increasing order, the ellipsoids that the shadow ray from the
-    // point of t towards light number light_index (at t = 1) may meet, and returns how
-    // many: culled() as for any ray, and the ellipsoids wholly beyond the light too. out
-    // and cull: size() entries.
-    std::size_t shadow_candidates(const OriginTerms& t, const Vec3<Real>& to_light, std::size_t light_index,
-                                  std::uint32_t* out, C* cull) const {
-        const C dx = C(to_light.x), dy = C(to_light.y), dz = C(to_light.z);
-        const C dd = dx * dx + dy * dy + dz * dz;
-        const std::size_t n = size();
-        const C* outside = light_outside_.data() + light_index * n;
-        for (std::size_t i = 0; i < n; ++i) {
-            const C b = t.px[i] * dx + t.py[i] * dy + t.pz[i] * dz;
-            // The light outside the sphere and the sphere's centre projecting beyond it:
-            // seen from the light along -direction the sphere is wholly behind.
-            cull[i] = outside[i] * (b + dd < 0 ? C(1) : C(0)) + culled(t.in_reach[i], b, dd, t.c[i]);
-        }
-        return compact(cull, out);
-    }
-
 private:
     // 1 when the origin, at squared distance p2 from the centre, is outside the sphere
     // but within the guard distance (where culling is allowed), else 0.
@@ -208,18 +155,7 @@ private:
         return in_reach * ((b > 0 ? C(1) : C(0)) + (b * b < dd * c ? C(1) : C(0)));
     }
 
-    std::size_t compact(const C* cull, std::uint32_t* out) const {
-        std::size_t count = 0;
-        const std::size_t n = size();
-        for (std::size_t i = 0; i < n; ++i) {
-            out[count] = static_cast<std::uint32_t>(i);
-            count += cull[i] == 0;
-        }
-        return count;
-    }
-
     std::vector<C> cx_, cy_, cz_, radius_, radius2_, guard2_;
-    std::vector<C> light_outside_;  // [light * size() + ellipsoid]
 };
 
 }  // namespace rt

@@ -1,5 +1,6 @@
-// The recursive Whitted tracer of SPEC sections 3-5, a template on the scalar type so
-// that the same code renders in float, double and long double.
+// The flat sweep's tracer of SPEC sections 3-5: its shortcuts' tables, built once per
+// scene, and the packets that shade hits with them (packet_shading.h); a template on the
+// scalar type, for double (raytracer.exe) and long double (the tests).
 #pragma once
 
 #include <algorithm>
@@ -36,7 +37,6 @@ struct PointLight {
 // of the bounding-sphere culling and, per light, the ellipsoid that last blocked it.
 template <typename Real>
 struct TraceScratch {
-    typename SphereBounds<Real>::OriginTerms origin;  // of the current hit point
     std::vector<std::uint32_t> candidates;
     std::vector<typename SphereBounds<Real>::C> cull;  // per ellipsoid: culled when not 0
     std::vector<std::uint32_t> last_occluder;          // per light; kNone when none yet
@@ -49,6 +49,7 @@ class Tracer {
 public:
     using V = Vec3<Real>;
     using C = typename SphereBounds<Real>::C;  // the precision of the culling arithmetic
+    static_assert(std::is_same_v<C, Real>, "the flat sweep renders in double or wider (render_to())");
 
     // The reference that the tests hold this tracer's images to, byte for byte, is
     // whitted.h with brute_force.h (render(..., accelerate = false)).
@@ -69,26 +70,26 @@ public:
             pixel_bytes(surface.ambient, surface.bytes);
             surfaces_.push_back(surface);
         }
-        bounds_ = SphereBounds<Real>(ellipsoids_, light_positions);
+        bounds_ = SphereBounds<Real>(ellipsoids_);
         for (const Ellipsoid<Real>& e : ellipsoids_) eye_origin_.push_back(mapped_origin(e, V{}));
         enclosures_ = Enclosures<Real>(ellipsoids_, light_positions);
         prefilter_ = ShadowPrefilter<Real>(ellipsoids_);
-        // Packets test their shadow rays together (shadow_lanes()) where some eye ray can
-        // hit something (else there is no shadow ray at all: 0.04 ms of testBehind's
-        // 1.8 ms run), where the image has at least as many pixels as there are
-        // ellipsoids (PairBlockers' set-up grows as ellipsoids squared times lights, a
-        // pixel's shadow rays without it as ellipsoids times lights), where rounding stays far below the
-        // spheres' inflation (everything_guarded()), and where the prefilter works (not in float); else each
-        // shadow ray is culled by the bounding spheres alone, as exact (in_shadow()).
+        // Shadow rays are tested a packet at a time (shadow_lanes()) and no other way, so
+        // the flat sweep renders a scene only where that is exact and pays (can_render();
+        // the tree takes the others): exact where rounding stays far below the spheres'
+        // inflation (everything_guarded()); paying where the image has at least as many
+        // pixels as there are ellipsoids (PairBlockers' set-up grows as ellipsoids squared
+        // times lights). Where no eye ray can hit anything there is no shadow ray at all,
+        // and nothing to build (0.04 ms of testBehind's 1.8 ms run).
         const std::vector<PixelRect> rects = screen_rects(scene);
         const bool any_seen = std::any_of(rects.begin(), rects.end(), [](const PixelRect& r) {
             return r.first_column <= r.last_column && r.first_row <= r.last_row;
         });
         const double pixels = double(scene.columns) * double(scene.rows);
-        packet_shadows_ = std::is_same_v<C, Real> && any_seen && pixels >= double(ellipsoids_.size()) &&
-                          ellipsoids_.size() <= WideSet::kCapacity && prefilter_.enabled() &&
-                          everything_guarded();
-        if (packet_shadows_) {
+        const bool packet_shadows = pixels >= double(ellipsoids_.size()) &&
+                                    ellipsoids_.size() <= WideSet::kCapacity && everything_guarded();
+        can_render_ = packet_shadows || !any_seen;
+        if (packet_shadows && any_seen) {
             const std::vector<BoundingSphere<C>> spheres = bounds_.spheres();
             std::vector<Vec3<C>> positions;
             for (const PointLight<Real>& l : lights_) positions.push_back(Vec3<C>::from(l.position));
@@ -98,6 +99,9 @@ public:
                 [&](std::size_t l, std::size_t j) { return enclosures_.light_within(l, j); });
         }
     }
+
+    // Whether the flat sweep renders the scene (see the constructor); else the tree does.
+    bool can_render() const { return can_render_; }
 
     // Working memory for one thread's rays.
     TraceScratch<Real> make_scratch() const {
@@ -179,33 +183,6 @@ public:
                       const Real* dz, Real min_t, TraceScratch<Real>& scratch, std::uint32_t* index, Real* t,
                       bool* inside) const;
 
-    // A light is blocked when any ellipsoid lies on the segment from the point to it.
-    // The direction is light - point, not normalised, so the light is at t = 1.
-    // Any blocker will do, so the search stops at the first; it tries first the one that
-    // blocked this light last on this thread (neighbouring pixels share their shadows).
-    // Ellipsoid number skip (kNone for none) is not tried: the caller knows it cannot block.
-    RT_ALWAYS_INLINE bool in_shadow(const V& point, const V& to_light, std::size_t light_index,
-                                    TraceScratch<Real>& scratch,
-                                    std::uint32_t skip = TraceScratch<Real>::kNone) const {
-        const std::uint32_t last = scratch.last_occluder[light_index];
-        if (last != TraceScratch<Real>::kNone && last != skip && blocks(last, point, to_light)) return true;
-        // The ellipsoids whose bounding spheres the shadow ray may meet.
-        bounds_.prepare(point, scratch.origin);
-        const std::uint32_t* first = scratch.candidates.data();
-        const std::uint32_t* const end =
-            first + bounds_.shadow_candidates(scratch.origin, to_light, light_index,
-                                              scratch.candidates.data(), scratch.cull.data());
-        for (; first != end; ++first) {
-            const std::uint32_t i = *first;
-            if (i == last || i == skip || enclosures_.contains_segment(point, light_index, i)) continue;
-            if (blocks(i, point, to_light)) {
-                scratch.last_occluder[light_index] = i;
-                return true;
-            }
-        }
-        return false;
-    }
-
 private:
     // Whether rounding is far below the spheres' inflation (sphere_bounds.h) for the box
     // of everything a ray can start from or go to: the ellipsoids' spheres, the lights
@@ -224,14 +201,6 @@ private:
         return bounds_.guards(lo, hi);
     }
 
-    // Whether ellipsoid i blocks the shadow ray; intersect() decides only where the
-    // prefilter cannot.
-    bool blocks(std::uint32_t i, const V& point, const V& to_light) const {
-        const auto answer = prefilter_.decide(point, to_light, i);
-        if (answer != ShadowPrefilter<Real>::kUnsure) return answer == ShadowPrefilter<Real>::kBlocked;
-        return blocks(ellipsoids_[i], point, to_light);
-    }
-
     static bool blocks(const Ellipsoid<Real>& e, const V& point, const V& to_light) {
         return blocks_segment(e, point, to_light);
     }
@@ -247,10 +216,6 @@ private:
     static constexpr std::size_t kLightBatch = 4;
     template <int N>
     PacketPlace packet_place(const HitPacket<Real, N>& p, std::uint32_t i) const;
-    template <int N>
-    void light_batch(const HitPacket<Real, N>& p, const PacketPlace& place, std::uint32_t i,
-                     std::size_t first, std::size_t size, LightLanes<Real, N>* batch, bool* lit_any,
-                     TraceScratch<Real>& scratch) const;
     template <int N, typename Set>
     void shadow_batch(const HitPacket<Real, N>& p, const PacketPlace& place, std::uint32_t i,
                       std::size_t first, std::size_t size, LightLanes<Real, N>* batch, bool* lit_any,
@@ -273,11 +238,11 @@ private:
     std::vector<Surface> surfaces_;  // per ellipsoid
     SphereBounds<Real> bounds_;
     std::vector<MappedOrigin<Real>> eye_origin_;  // per ellipsoid, of the camera
-    bool packet_shadows_ = false;                 // see shadow_lanes()
+    bool can_render_ = false;
     Enclosures<Real> enclosures_;
     ShadowPrefilter<Real> prefilter_;
-    PairBlockers<Real> pair_blockers_;  // where packet_shadows_
-    LightCones<C> light_cones_;         // where packet_shadows_
+    PairBlockers<Real> pair_blockers_;  // where an eye ray may hit something
+    LightCones<C> light_cones_;         // likewise
     V background_;
 };
 
