@@ -13,7 +13,7 @@
 namespace rt {
 
 // Up to this many ellipsoids the flat sweep renders: about where the tree overtakes it. Whole process,
-// 2 threads, wall, interleaved, medians of 15 (2026-12-03 13:30 UTC): random scenes (scale_scenes.h) of
+// 2 threads, wall, interleaved, medians of 15 (2026-12-03 12:10 UTC): random scenes (scale_scenes.h) of
 // 150 / 200 / 256 / 300 ellipsoids 9.7 / 13.6 / 18.5 / 21.7 ms flat against 12.7 / 15.5 / 16.7 / 16.8 ms
 // in the tree; the first 150 / 200 / 256 / 300 of sphereflake 3 (mirrors) 8.8 / 10.2 / 13.2 / 17.1 ms
 // flat against 12.0 / 12.7 / 13.5 / 16.3 ms. Where the tiles' lanes are arrays (no AVX: lanes.h) the
