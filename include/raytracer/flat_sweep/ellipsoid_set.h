@@ -32,10 +32,10 @@ public:
         }
         return s;
     }
-    // The set stored as kWords words from `words` on, and back.
-    static EllipsoidSet from_words(const std::uint64_t* words) {
+    // The set stored as `count` words (at most kWords) from `words` on, and back.
+    static EllipsoidSet from_words(const std::uint64_t* words, std::size_t count) {
         EllipsoidSet s;
-        for (std::size_t w = 0; w < kWords; ++w) s.word_[w] = words[w];
+        for (std::size_t w = 0; w < kWords; ++w) s.word_[w] = w < count ? words[w] : 0;
         return s;
     }
     void to_words(std::uint64_t* words) const {

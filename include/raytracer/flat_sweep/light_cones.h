@@ -101,7 +101,7 @@ public:
     }
 
     // Of light l: the spheres among `among` that a segment from some point of the ball
-    // to the light may meet. Set: as wide as set_words() of the spheres.
+    // to the light may meet. Set: at least as wide as set_words() of the spheres.
     template <typename Set>
     Set packet(std::size_t l, const Vec3<C>& light, const Ball& b, Set among) const {
         using std::sqrt;
@@ -116,7 +116,7 @@ public:
         const C margin = dist * C(kMargin);
         const C reach = dist + b.radius;
         const std::size_t base = l * stride_;
-        Set set = Set::from_words(&everywhere_[l * words_]);
+        Set set = Set::from_words(&everywhere_[l * words_], words_);
         for (std::size_t start = 0; start < stride_; start += 8) {
             const C *ux = &ux_[base + start], *uy = &uy_[base + start], *uz = &uz_[base + start];
             const C *cos_b = &cos_b_[base + start], *sin_b = &sin_b_[base + start],

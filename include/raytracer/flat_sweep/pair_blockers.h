@@ -86,10 +86,11 @@ public:
     }
 
     bool usable() const { return !sets_.empty(); }
-    // The set of ellipsoid i and light l (usable() only), as wide as set_words().
+    // The set of ellipsoid i and light l (usable() only), in a Set at least as wide as
+    // set_words().
     template <typename Set>
     Set set(std::size_t i, std::size_t l) const {
-        return Set::from_words(&sets_[(i * lights_ + l) * words_]);
+        return Set::from_words(&sets_[(i * lights_ + l) * words_], words_);
     }
 
 private:
