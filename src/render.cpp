@@ -4,7 +4,6 @@
 #include "raytracer/render.h"
 
 #include <cstddef>
-#include <type_traits>
 
 #include "raytracer/flat_sweep/render_flat_sweep.h"
 #include "raytracer/helper_pool.h"
@@ -19,13 +18,8 @@ unsigned threads_asked(unsigned threads) { return threads == 0 ? available_cores
 template <typename Real>
 void render_to(const Scene& scene, RowSink& sink, unsigned threads, bool accelerate) {
     if (!accelerate) return render_reference_to<Real>(scene, sink, threads);
-    // The flat sweep's shadow prefilter needs double's rounding: float takes the tree.
-    if constexpr (std::is_same_v<Real, float>) {
-        return render_whitted_to<Real>(scene, sink, threads);
-    } else {
-        if (takes_the_tree(scene)) return render_whitted_to<Real>(scene, sink, threads);
-        render_flat_sweep_to<Real>(scene, sink, threads);
-    }
+    if (takes_the_tree(scene)) return render_whitted_to<Real>(scene, sink, threads);
+    render_flat_sweep_to<Real>(scene, sink, threads);
 }
 
 namespace {

@@ -76,7 +76,8 @@ std::string small_scene(const std::string& output) {
 }
 
 // 200 ellipsoids and 200 lights scattered by a fixed generator: at RES 1200, 1.4 s on the
-// build machine's two cores, 2.7 s on one, longer under the sanitizers.
+// build machine's two cores, 2.7 s on one, longer under the sanitizers. The tests below
+// signal it at most 0.25 s after its start, well inside its render.
 constexpr int kSlowRes = 1200;
 std::string slow_scene(const std::string& output) {
     std::minstd_rand random(12345);
@@ -174,11 +175,11 @@ TEST(an_interrupted_render_leaves_nothing_and_exits_128_plus_the_signal) {
             options.named_temporary = named;
             const pid_t pid = start(folder, {"slow.txt"}, options);
             bool temporary_seen = false;
-            for (int i = 0; i < 100 && !temporary_seen; ++i) {
+            for (int i = 0; i < 40 && !temporary_seen; ++i) {
                 std::this_thread::sleep_for(std::chrono::milliseconds(5));
                 temporary_seen = holds_temporary(folder);
             }
-            std::this_thread::sleep_for(std::chrono::milliseconds(300));
+            std::this_thread::sleep_for(std::chrono::milliseconds(50));
             CHECK_EQ(temporary_seen, named);  // the unnamed file has no name to see
             kill(pid, signal_number);
             CHECK_EQ(wait_for(pid), 128 + signal_number);
@@ -199,7 +200,7 @@ TEST(sigkill_mid_render_leaves_nothing_on_linux) {
     const Scratch folder;
     write_bytes(folder.work / "slow.txt", slow_scene("new.ppm"));
     const pid_t pid = start(folder, {"slow.txt"});
-    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
     kill(pid, SIGKILL);
     CHECK_EQ(wait_for(pid), 1000 + SIGKILL);
     CHECK_EQ(folder.names(), std::string("slow.txt"));

@@ -262,13 +262,10 @@ private:
     Real near_z_;
     std::atomic<int> next_row_{0};
 };
-}  // namespace
 
+// The image of a sweep that can_render(), on threads as render_to() takes them.
 template <typename Real>
-void render_flat_sweep_to(const Scene& scene, RowSink& sink, unsigned threads) {
-    const unsigned most_threads = threads_asked(threads);
-    FlatSweep<Real> sweep(scene, sink, most_threads);
-    if (!sweep.can_render()) return render_whitted_to<Real>(scene, sink, threads);
+void sweep_rows(FlatSweep<Real>& sweep, const Scene& scene, unsigned threads, unsigned most_threads) {
     // Each helper's working memory is made here, so that a helper thread allocates
     // nothing (its first allocation would set up a malloc arena of its own).
     std::vector<Workspace<Real>> helper_work;
@@ -302,9 +299,23 @@ void render_flat_sweep_to(const Scene& scene, RowSink& sink, unsigned threads) {
     helpers.finish();
     sweep.flush();
 }
+}  // namespace
 
-// As render.cpp: double for raytracer.exe, long double for the tests.
+template <typename Real>
+void render_flat_sweep_to(const Scene& scene, RowSink& sink, unsigned threads) {
+    if constexpr (kFlatSweepPrecision<Real>) {
+        const unsigned most_threads = threads_asked(threads);
+        FlatSweep<Real> sweep(scene, sink, most_threads);
+        if (sweep.can_render()) return sweep_rows(sweep, scene, threads, most_threads);
+    }
+    // A precision or a scene the flat sweep does not render: the tree (once the sweep's
+    // tables are freed).
+    render_whitted_to<Real>(scene, sink, threads);
+}
+
+// As render.cpp: double for raytracer.exe, float and long double for the tests.
 #ifdef RAYTRACER_EXTRA_PRECISIONS
+template void render_flat_sweep_to<float>(const Scene&, RowSink&, unsigned);
 template void render_flat_sweep_to<long double>(const Scene&, RowSink&, unsigned);
 #else
 template void render_flat_sweep_to<double>(const Scene&, RowSink&, unsigned);

@@ -11,8 +11,8 @@
 // run it) spills them, and measured 15-20% slower here (the course scenes and the heavy
 // scene, one thread).
 //
-// Shadow rays are Tracer::shadow_lanes()'s (or one at a time, Tracer::hit_colours()),
-// and what each mirrored ray hits is Tracer::nearest_hits()'s (packet_shading.h).
+// Shadow rays are Tracer::shadow_lanes()'s, and what each mirrored ray hits is
+// Tracer::nearest_hits()'s (packet_shading.h).
 #pragma once
 
 #include <cstdint>

@@ -129,8 +129,8 @@ void Tracer<Real>::shadow_batch(const HitPacket<Real, N>& p, const PacketPlace& 
 
 // The colours (Whitted::shade(), whitted.h) of up to N rays that hit ellipsoid i, ray k
 // from (ox, oy, oz)[k] along (dx, dy, dz)[k] at t[k] (hit_packet.h): the same
-// operations lane by lane; shadow rays are tested for all lanes at once where
-// shadow_lanes() can, what the mirrored rays hit is found for all lanes at once
+// operations lane by lane; shadow rays are tested for all lanes at once
+// (shadow_lanes()), what the mirrored rays hit is found for all lanes at once
 // (nearest_hits()), and the mirrored rays are shaded in packets again, grouped by the
 // ellipsoid they hit.
 template <typename Real>

@@ -5,10 +5,12 @@
 #pragma once
 
 #include <cstddef>
+#include <type_traits>
 
 #include "raytracer/lanes.h"
 #include "raytracer/row_sink.h"
 #include "raytracer/scene.h"
+#include "raytracer/scene_precision.h"
 
 namespace rt {
 
@@ -21,8 +23,14 @@ namespace rt {
 // packets took shadows past 64 ellipsoids, against 57 / 61 / 67 ms in the tree).
 inline constexpr std::size_t kFlatSweepEllipsoids = Lanes<double, 16>::kNative ? 200 : 384;
 // and while ellipsoids x lights stay below this: the flat sweep keeps tables per
-// ellipsoid and light (about 100 bytes a pair), the tree nothing per pair.
+// ellipsoid and light (about 100 bytes a pair), the tree nothing per pair;
 inline constexpr std::size_t kFlatSweepPairs = 65536;
+// and ellipsoids squared x lights below this: per light, the flat sweep's tables and its
+// packets' tests of them grow with the ellipsoids, the tree's with their logarithm.
+// Whole process, 2 threads, 400x400, medians of 5 (2026-12-03 13:25 UTC): 200 ellipsoids
+// with 80 / 160 / 240 lights 82 / 177 / 287 ms flat against 98 / 181 / 264 ms in the
+// tree, 128 with 500 257 against 262 ms, 64 with 1,000 116 against 157 ms.
+inline constexpr double kFlatSweepPairWork = 8e6;
 
 // The flat sweep's shortcuts multiply squared lengths (4th powers of the scene's
 // numbers), which overflow or underflow past about 1e+-77: they are exact while every
@@ -38,12 +46,19 @@ bool lengths_fit_the_flat_sweep(const Scene& scene);
 inline bool takes_the_tree(const Scene& scene) {
     const std::size_t ellipsoids = scene.spheres.size();
     return ellipsoids > kFlatSweepEllipsoids || ellipsoids * scene.lights.size() > kFlatSweepPairs ||
+           double(ellipsoids) * double(ellipsoids) * double(scene.lights.size()) > kFlatSweepPairWork ||
            !lengths_fit_the_flat_sweep(scene);
 }
 
-// In double and long double (float takes the tree); threads = 0: see render_to(). A
-// scene whose shadow rays the flat sweep's packets cannot test exactly goes to the tree
-// from here (Tracer::can_render()).
+// The precisions the flat sweep renders in: double, and long double where it is wider
+// than double. Its shortcuts compute in the scene's own type, and their margins need
+// double's rounding at least (shadow_prefilter.h).
+template <typename Real>
+inline constexpr bool kFlatSweepPrecision = std::is_same_v<AtLeastDouble<Real>, Real>;
+
+// Instantiated for float, double and long double; threads = 0: see render_to(). A
+// precision the flat sweep does not render in, or a scene whose shadow rays its packets
+// cannot test exactly (Tracer::can_render()), goes to the tree from here.
 template <typename Real>
 void render_flat_sweep_to(const Scene& scene, RowSink& sink, unsigned threads);
 
