@@ -117,9 +117,11 @@ void Tracer<Real>::shadow_batch(const HitPacket<Real, N>& p, const PacketPlace& 
     for (std::size_t b = 0; b < size; ++b) {
         const std::size_t li = first + b;
         if (lit_any[b])
-            may_block[b] = light_cones_.packet(
-                li, lights_[li].position, place.ball,
-                place.in_sphere ? pair_blockers_.template set<Set>(i, li) : Set::first(ellipsoids_.size()));
+            may_block[b] = !culling_tables_
+                               ? Set::first(ellipsoids_.size())
+                               : light_cones_.packet(li, lights_[li].position, place.ball,
+                                                     place.in_sphere ? pair_blockers_.template set<Set>(i, li)
+                                                                     : Set::first(ellipsoids_.size()));
     }
     for (std::size_t b = 0; b < size; ++b)
         if (lit_any[b])
@@ -194,7 +196,8 @@ void Tracer<Real>::hit_colours(std::uint32_t i, int count, const Real* ox, const
 // where self_clear; those that enclose light and point), so each lane gets the
 // unculled renderer's boolean: the same bytes.
 // may_block: the ellipsoids that can block some lane at all (PairBlockers, then
-// LightCones::packet() for the packet's ball), in a set of Set's width.
+// LightCones::packet() for the packet's ball; all of them without culling_tables_), in a
+// set of Set's width.
 // self_within: the lanes whose points Enclosures::points_within() ellipsoid self.
 template <typename Real>
 template <int N, typename Set>
@@ -226,7 +229,8 @@ std::uint64_t Tracer<Real>::shadow_lanes(const HitPacket<Real, N>& p, LightLanes
     Bits meets[Set::kCapacity];
     Bits reached = 0;
     may_block.for_each([&](std::size_t j) {
-        reached |= meets[j] = light_cones_.template lanes<N>(li, j, fx, fy, fz, l.distance, kLane);
+        reached |= meets[j] =
+            culling_tables_ ? light_cones_.template lanes<N>(li, j, fx, fy, fz, l.distance, kLane) : ~Bits(0);
     });
     Bits waiting = front;  // lanes not yet known to be shadowed
     if ((reached & front) == 0) {

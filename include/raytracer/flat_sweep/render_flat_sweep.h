@@ -27,7 +27,7 @@ inline constexpr std::size_t kFlatSweepEllipsoids = Lanes<double, 16>::kNative ?
 inline constexpr std::size_t kFlatSweepPairs = 65536;
 // and ellipsoids squared x lights below this: per light, the flat sweep's tables and its
 // packets' tests of them grow with the ellipsoids, the tree's with their logarithm.
-// Whole process, 2 threads, 400x400, medians of 5 (2026-12-03 13:25 UTC): 200 ellipsoids
+// Whole process, 2 threads, 400x400, medians of 5 (2026-12-03 13:15 UTC): 200 ellipsoids
 // with 80 / 160 / 240 lights 82 / 177 / 287 ms flat against 98 / 181 / 264 ms in the
 // tree, 128 with 500 257 against 262 ms, 64 with 1,000 116 against 157 ms.
 inline constexpr double kFlatSweepPairWork = 8e6;
