@@ -58,7 +58,7 @@ void operations_match_a_list() {
         CHECK(both == both && (both == a) == (members(both) == members(a)));
         // Stored and read back, in its own width.
         std::uint64_t words[Set::kWords];
-        a.to_words(words);
+        a.to_words(words, Set::kWords);
         CHECK(Set::from_words(words, Set::kWords) == a);
         // A walk that stops after `stop` members.
         const std::vector<std::size_t> all = members(a);
@@ -79,7 +79,7 @@ TEST(a_narrow_store_reads_into_a_wide_set) {
     rt::NarrowSet narrow;
     narrow.insert(0), narrow.insert(63);
     std::uint64_t word[1];
-    narrow.to_words(word);
+    narrow.to_words(word, 1);
     const rt::WideSet wide = rt::WideSet::from_words(word, 1);
     CHECK(members(wide) == (std::vector<std::size_t>{0, 63}));
     CHECK_EQ(rt::set_words(64), std::size_t{1});

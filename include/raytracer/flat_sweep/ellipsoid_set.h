@@ -38,8 +38,8 @@ public:
         for (std::size_t w = 0; w < kWords; ++w) s.word_[w] = w < count ? words[w] : 0;
         return s;
     }
-    void to_words(std::uint64_t* words) const {
-        for (std::size_t w = 0; w < kWords; ++w) words[w] = word_[w];
+    void to_words(std::uint64_t* words, std::size_t count) const {
+        for (std::size_t w = 0; w < count && w < kWords; ++w) words[w] = word_[w];
     }
 
     bool contains(std::size_t j) const { return ((word_[j / 64] >> (j % 64)) & 1U) != 0; }

@@ -12,17 +12,18 @@
 // spheres beyond the point.
 //
 // Exactness: a segment from P to the light L that meets a sphere (centre S, radius R,
-// inflated over the ellipsoid: sphere_bounds.h) has a point X in it, so the direction P - L lies within the
-// sphere's angular radius b of S - L (sin b = R / |S - L|), and |X - L| <= |P - L| gives |P - L| >= |S - L| -
-// R. A ball (c, r) of points seen from L lies within angle a (sin a = r / |c - L|) of c - L, at distances up
-// to |c - L| + r; its segments can meet the sphere only if the angle between c - L and S - L is at most a +
-// b, i.e. its cosine is at least cos(a + b) = cos a cos b - sin a sin b (a + b <= pi). A sphere ruled out
-// this way cannot be met by intersect() on the segment, which is what the unculled renderer would test.
-// Rounding of a few ulps is covered by kMargin on the cosines and distances, far above it; a sphere around
-// the light is seen everywhere, and NaN compares as "may meet".
+// inflated over the ellipsoid: sphere_bounds.h) has a point X in it, so the direction
+// P - L lies within the sphere's angular radius b of S - L (sin b = R / |S - L|), and
+// |X - L| <= |P - L| gives |P - L| >= |S - L| - R. A ball (c, r) of points seen from L
+// lies within angle a (sin a = r / |c - L|) of c - L, at distances up to |c - L| + r;
+// its segments can meet the sphere only if the angle between c - L and S - L is at most
+// a + b, i.e. its cosine is at least cos(a + b) = cos a cos b - sin a sin b (a + b <=
+// pi). A sphere ruled out this way cannot be met by intersect() on the segment, which is
+// what the unculled renderer would test. Rounding of a few ulps is covered by kMargin on
+// the cosines and distances, far above it; a sphere around the light is seen
+// everywhere, and NaN compares as "may meet".
 #pragma once
 
-#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -69,11 +70,8 @@ public:
             }
         words_ = set_words(n_);
         everywhere_.resize(lights.size() * words_);
-        for (std::size_t l = 0; l < lights.size(); ++l) {
-            std::uint64_t all[WideSet::kWords];
-            everywhere[l].to_words(all);
-            std::copy(all, all + words_, &everywhere_[l * words_]);
-        }
+        for (std::size_t l = 0; l < lights.size(); ++l)
+            everywhere[l].to_words(&everywhere_[l * words_], words_);
     }
 
     bool usable() const { return !everywhere_.empty(); }

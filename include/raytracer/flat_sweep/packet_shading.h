@@ -113,15 +113,17 @@ void Tracer<Real>::shadow_batch(const HitPacket<Real, N>& p, const PacketPlace& 
                                 bool* lit_any, TraceScratch<Real>& scratch) const {
     // Per light, the ellipsoids that some segment from the packet's ball to it may meet
     // (independent chains, which overlap), then the lanes each of them shadows.
+    const Set every = Set::first(ellipsoids_.size());
     Set may_block[kLightBatch];
     for (std::size_t b = 0; b < size; ++b) {
         const std::size_t li = first + b;
-        if (lit_any[b])
-            may_block[b] = !culling_tables_
-                               ? Set::first(ellipsoids_.size())
-                               : light_cones_.packet(li, lights_[li].position, place.ball,
-                                                     place.in_sphere ? pair_blockers_.template set<Set>(i, li)
-                                                                     : Set::first(ellipsoids_.size()));
+        if (!lit_any[b]) continue;
+        if (!culling_tables_) {
+            may_block[b] = every;
+        } else {
+            const Set among = place.in_sphere ? pair_blockers_.template set<Set>(i, li) : every;
+            may_block[b] = light_cones_.packet(li, lights_[li].position, place.ball, among);
+        }
     }
     for (std::size_t b = 0; b < size; ++b)
         if (lit_any[b])

@@ -1,10 +1,10 @@
 // Per ellipsoid i and light l, the ellipsoids that can block a shadow ray from any point
 // of i's bounding sphere to l, as an EllipsoidSet's words, computed once.
 //
-// WHY: a packet's shadow candidates are often known in advance: in the course scenes a sphere's light often
-// has no other sphere anywhere near the way, and in the mirror room the room encloses every small ellipsoid
-// and every light. Two exact reasons to leave ellipsoid j out for all points P of the bounding sphere S_i
-// (centre c, radius R):
+// WHY: a packet's shadow candidates are often known in advance: in the course scenes a
+// sphere's light often has no other sphere anywhere near the way, and in the mirror
+// room the room encloses every small ellipsoid and every light. Two exact reasons to
+// leave ellipsoid j out for all points P of the bounding sphere S_i (centre c, radius R):
 // - every segment from such a P to L lies within distance R of the segment from c to
 //   L (P + t (L - P) is (1 - t)(P - c) away from c + t (L - c)), so j's bounding sphere
 //   (radius r_j, inflated by 1e-3 over the ellipsoid: sphere_bounds.h) cannot meet it
@@ -89,9 +89,7 @@ public:
                 set.for_each([&](std::size_t j) {
                     if (j == i || !encloses(l, j) || !encloses_sphere(ellipsoids[j], si)) kept.insert(j);
                 });
-                std::uint64_t words[WideSet::kWords];
-                kept.to_words(words);
-                std::copy(words, words + words_, &sets_[(i * lights_ + l) * words_]);
+                kept.to_words(&sets_[(i * lights_ + l) * words_], words_);
             }
         }
     }

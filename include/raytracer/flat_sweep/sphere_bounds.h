@@ -3,14 +3,16 @@
 //
 // WHY: intersect() costs four divisions and a square root per ray and ellipsoid; a ray
 // that clearly misses a slightly inflated bounding sphere (or has it wholly behind its
-// origin) is rejected here with a few multiplications and no division. The sphere of an ellipsoid is centred
-// on it with radius max|s| (1 + kCullingGap); it contains the ellipsoid with a gap of at least kCullingGap in
-// the unit sphere's space, far more than the rounding of intersect() (a few ulps, plus its tangent bound,
-// unit_sphere_roots.h: at most ~64 epsilon times the distance in radii, 1e-8 within the reach below). So
-// every culled test is one that intersect() would have answered "no usable root", and images stay
-// bit-identical. Where the ray's origin is so far from an ellipsoid, relative to its smallest scale, that
-// rounding could approach that gap, nothing is culled. Measured on tests/bench/heavy.txt (15 ellipsoids, 10
-// lights), single thread: see docs/speed.md.
+// origin) is rejected here with a few multiplications and no division. The sphere of an
+// ellipsoid is centred on it with radius max|s| (1 + kCullingGap); it contains the
+// ellipsoid with a gap of at least kCullingGap in the unit sphere's space, far more than
+// the rounding of intersect() (a few ulps, plus its tangent bound, unit_sphere_roots.h:
+// at most ~64 epsilon times the distance in radii, 1e-8 within the reach below). So
+// every culled test is one that intersect() would have answered "no usable root", and
+// images stay bit-identical. Where the ray's origin is so far from an ellipsoid,
+// relative to its smallest scale, that rounding could approach that gap, nothing is
+// culled. Measured on tests/bench/heavy.txt (15 ellipsoids, 10 lights), single thread:
+// see docs/speed.md.
 //
 // The arrays are a structure of arrays, so that the per-ray loop over all ellipsoids
 // vectorises (GCC -O2/-O3: packed multiplies and compares, no gathers).
