@@ -1,8 +1,8 @@
 // The tree's bundle queries (Bvh::closest() and Bvh::occluded() for the lanes of a
-// tile, whitted_tiles.h) answer, lane by lane, as BruteForce answers each ray alone:
-// on crowds of thin, tiny, huge, negated, touching and far ellipsoids; for bundles
-// tight and wide, with directions that straddle zero or hold +0 and -0 on one axis,
-// with lights on a surface, and with every subset of lanes.
+// tile, whitted_tiles.h; Bvh::closest() for a block of eye rays, eye_block.h) answer,
+// lane by lane, as BruteForce answers each ray alone: on crowds of thin, tiny, huge, negated, touching and
+// far ellipsoids; for bundles tight and wide, with directions that straddle zero or hold +0 and -0 on one
+// axis, with lights on a surface, and with every subset of lanes.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -118,6 +118,45 @@ int shadow_lanes_differing(const Crowd<Real>& c, unsigned seed, int bundles, lon
             differing +=
                 plain.occluded(points[k], light - points[k], plain_hint) != ((blocked >> k & 1U) != 0);
         }
+    }
+    return differing;
+}
+
+// Blocks of eye rays (Bvh::closest() for an EyeBlock: the tiles' first bounce), of 1-4
+// rows and 1-8 columns, aimed at an ellipsoid or anywhere, with pixels a hair apart or
+// far apart, some columns through x = 0 or -0, against each pixel's
+// BruteForce::closest() from the camera. hits counts the pixels that see something.
+template <typename Real>
+int eye_pixels_differing(const Crowd<Real>& c, unsigned seed, int blocks, long& hits) {
+    using V = rt::Vec3<Real>;
+    constexpr int kRows = 4, kColumns = 8;
+    const rt::BruteForce<Real> plain(c.all);
+    const rt::Bvh<Real> tree(c.all);
+    std::mt19937 g(seed);
+    int differing = 0;
+    for (int k = 0; k < blocks; ++k) {
+        const Real near_z = -Real(g() % 2 ? 1 : uniform(g, 0.05, 4));
+        const V aim = c.all[g() % c.all.size()].centre;
+        // Where the aimed-at centre meets the near plane (anywhere, if behind the camera).
+        const bool ahead = aim.z < 0 && g() % 4 != 0;
+        const double x0 = ahead ? double(aim.x * (near_z / aim.z)) : uniform(g, -3, 3);
+        const double y0 = ahead ? double(aim.y * (near_z / aim.z)) : uniform(g, -3, 3);
+        const double step = g() % 2 ? uniform(g, 1e-4, 1e-2) : uniform(g, 0.02, 0.5);
+        const int rows = 1 + static_cast<int>(g() % kRows), columns = 1 + static_cast<int>(g() % kColumns);
+        Real x[kColumns], y[kRows];
+        for (int i = 0; i < columns; ++i) x[i] = Real(x0 + step * (i - columns / 2));
+        for (int b = 0; b < rows; ++b) y[b] = Real(y0 - step * b);
+        if (g() % 8 == 0) x[g() % columns] = g() % 2 ? Real(0) : -Real(0);
+        rt::EyeBlock<Real, kRows, kColumns> block(x, columns, y, rows, near_z);
+        tree.closest(block);
+        for (int b = 0; b < rows; ++b)
+            for (int i = 0; i < columns; ++i) {
+                const rt::NearestHit<Real> want = plain.closest({}, {x[i], y[b], near_z}, rt::kEyeRayMinT);
+                const rt::NearestHit<Real> got = block.tried() ? block.hit(b, i) : rt::NearestHit<Real>{};
+                hits += want.found();
+                differing += !(got.ellipsoid == want.ellipsoid &&
+                               (!want.found() || (got.t == want.t && got.inside == want.inside)));
+            }
     }
     return differing;
 }
@@ -304,6 +343,34 @@ TEST(bvh_closest_bundles_match_brute_force) {
         CHECK_EQ(closest_lanes_differing(crowd<double>(seed, n), seed, 400), 0);
         CHECK_EQ(closest_lanes_differing(crowd<long double>(seed, n), seed, 200), 0);
     }
+}
+
+// The same for blocks of eye rays; odd seeds put ellipsoids beyond the camera's guard
+// distance, where the block tries each ellipsoid of the leaves it reaches unculled.
+TEST(bvh_eye_blocks_match_brute_force) {
+    long hits = 0;
+    for (unsigned seed = 1; seed <= 8; ++seed) {
+        const int n = 30 + static_cast<int>(seed) * 40;
+        CHECK_EQ(eye_pixels_differing(crowd<float>(seed, n), seed, 600, hits), 0);
+        CHECK_EQ(eye_pixels_differing(crowd<double>(seed, n), seed, 800, hits), 0);
+        CHECK_EQ(eye_pixels_differing(crowd<long double>(seed, n), seed, 300, hits), 0);
+    }
+    std::cout << "  eye pixels that see an ellipsoid: " << hits << "\n";
+    CHECK(hits > 20000);
+}
+
+// Copies of ellipsoids before and after them: equal roots, where the lower index must
+// win whichever the descent tries first.
+TEST(bvh_eye_blocks_break_ties_as_brute_force) {
+    long hits = 0;
+    for (unsigned seed = 2; seed <= 8; seed += 2) {
+        Crowd<double> c = crowd<double>(seed, 60);
+        const std::vector<rt::Ellipsoid<double>> first(c.all.begin(), c.all.begin() + 20);
+        c.all.insert(c.all.end(), first.begin(), first.end());
+        c.all.insert(c.all.begin(), first.begin(), first.end());
+        CHECK_EQ(eye_pixels_differing(c, seed, 1500, hits), 0);
+    }
+    CHECK(hits > 5000);
 }
 
 // The same with a room centred on the camera, in which a ray from 0 and one from -0 start

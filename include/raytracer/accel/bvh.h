@@ -37,6 +37,7 @@
 
 #include "raytracer/accel/bvh_build.h"
 #include "raytracer/accel/cleared_lanes.h"
+#include "raytracer/accel/eye_block.h"
 #include "raytracer/accel/slab_rays.h"
 #include "raytracer/bit_scan.h"
 #include "raytracer/reference/ellipsoid.h"
@@ -84,11 +85,10 @@ public:
     // closest() for each lane k in `lanes` of a bundle of rays, into hits[k]. The bundle goes down the tree
     // as one slab ray, nearest first, until no lane can find a nearer root; in a leaf the bundle, then each
     // lane's ray, is tried against each ellipsoid's box, then each lane's exactly (the lanes are set up where
-    // the bundle first meets a box: a small scene's tiles mostly reach its leaf or two and miss). Rays from
-    // one origin (eye rays) always go as a bundle. Rays from different origins (a tile's mirrored rays) widen
-    // as they go, and go as a bundle where their directions are narrow_directions() (off a floor or a large
-    // sphere), or where the scene has no more ellipsoids than the bundle has rays, so that it tries each at
-    // most once for them all; otherwise a wide bundle's descent costs more than it saves (docs/speed.md).
+    // the bundle first meets a box). Rays from different origins (a tile's mirrored rays) widen as they go,
+    // and go as a bundle where their directions are narrow_directions() (off a floor or a large sphere), or
+    // where the scene has no more ellipsoids than the bundle has rays, so that it tries each at most once for
+    // them all; otherwise a wide bundle's descent costs more than it saves (docs/speed.md).
     template <int N>
     void closest(const V (&origins)[N], const V (&directions)[N], unsigned lanes, double min_t,
                  NearestHit<Real> (&hits)[N]) const {
@@ -99,9 +99,8 @@ public:
         C o_lo[3], o_hi[3], d_lo[3], d_hi[3];
         bounds_of(origins, lanes, o_lo, o_hi);
         bounds_of(directions, lanes, d_lo, d_hi);
-        const bool one_origin = o_lo[0] == o_hi[0] && o_lo[1] == o_hi[1] && o_lo[2] == o_hi[2];
         const bool bundled = lanes != 0 && (lanes & (lanes - 1)) != 0 && !items_.empty() &&
-                             (one_origin || narrow_directions(d_lo, d_hi, lanes) ||
+                             (narrow_directions(d_lo, d_hi, lanes) ||
                               items_.size() <= static_cast<std::size_t>(bit_count(lanes))) &&
                              make_slab_ray(o_lo, o_hi, d_lo, d_hi, ray) && guarded(o_lo, o_hi);
         if (!bundled) {
@@ -152,6 +151,36 @@ public:
             return met;
         });
         return met;
+    }
+
+    // closest() with min_t kEyeRayMinT for each eye ray of a block (eye_block.h). The block descends the
+    // tree as one slab ray from the camera, nearest first, and tries each ellipsoid whose box it may meet,
+    // until no box ahead can hold a root nearer than every pixel's.
+    template <int Rows, int Columns>
+    void closest(EyeBlock<Real, Rows, Columns>& block) const {
+        if (items_.empty()) return;
+        C d_lo[3], d_hi[3];
+        block.directions(d_lo, d_hi);
+        const C o[3] = {0, 0, 0};
+        SlabRay<C> ray;
+        if (!make_slab_ray(o, o, d_lo, d_hi, ray)) {  // a direction without a finite inverse
+            for (std::uint32_t i = 0; i < items_.size(); ++i) block.add(items_[i], index_[i]);
+            return;
+        }
+        const bool culls = guarded(o, o);  // else each ellipsoid of a leaf met is tried, as by one ray
+        auto leaf = [&](Child leaf, C& t1) {
+            for (std::uint32_t i = leaf.first; i < leaf.first + leaf.count; ++i) {
+                const BuildBox<C> box = inflated_box<C>(items_[i]);
+                if (!culls)
+                    block.add(items_[i], index_[i]);
+                else if (meets_box(ray, box, t1))
+                    block.add(items_[i], index_[i], &box);
+            }
+            if (block.tried()) t1 = C(block.farthest());
+            return false;
+        };
+        culls ? traverse<true, true>(ray, std::numeric_limits<C>::infinity(), leaf)
+              : traverse<true, false>(ray, std::numeric_limits<C>::infinity(), leaf);
     }
 
     // As BruteForce::occluded(): whether some ellipsoid blocks the shadow ray, trying first the hint

@@ -16,56 +16,24 @@
 
 namespace rt {
 
-namespace detail {
-// The loop of both intersect_lanes(): lane k's ray from the mapped origin origin_of(k)
-// (mapped_origin() of its origin) along (dx, dy, dz)[k].
-template <int N, typename Real, typename OriginOf>
-RT_ALWAYS_INLINE void lane_roots(const Ellipsoid<Real>& e, OriginOf origin_of, const Real* dx, const Real* dy,
-                                 const Real* dz, Real* hit, Real* near, Real* far) {
+// Per lane k: hit[k] = 1 where intersect(e, (ox, oy, oz)[k], (dx, dy, dz)[k]).hit (else 0),
+// and there near[k], far[k] its roots.
+template <int N, typename Real>
+void intersect_lanes(const Ellipsoid<Real>& e, const Real* ox, const Real* oy, const Real* oz, const Real* dx,
+                     const Real* dy, const Real* dz, Real* hit, Real* near, Real* far) {
     const Vec3<Real> scale = e.scale;
     // Results into local arrays first: with three output pointers that may alias the
     // inputs GCC gives up on the run-time alias checks and keeps the loop scalar.
     Real hits[N], nears[N], fars[N];
     RT_VECTOR_LOOP
     for (int k = 0; k < N; ++k) {
-        const MappedOrigin<Real> o = origin_of(k);
+        const MappedOrigin<Real> o = mapped_origin(e, Vec3<Real>{ox[k], oy[k], oz[k]});
         // intersect_mapped(): d / s.
         const LaneRoots<Real> r =
             unit_sphere_roots(o.o.x, o.o.y, o.o.z, o.c, dx[k] / scale.x, dy[k] / scale.y, dz[k] / scale.z);
         hits[k] = r.hit, nears[k] = r.near, fars[k] = r.far;
     }
     for (int k = 0; k < N; ++k) hit[k] = hits[k], near[k] = nears[k], far[k] = fars[k];
-}
-}  // namespace detail
-
-// Per lane k: hit[k] = 1 where intersect(e, (ox, oy, oz)[k], (dx, dy, dz)[k]).hit (else 0),
-// and there near[k], far[k] its roots.
-template <int N, typename Real>
-void intersect_lanes(const Ellipsoid<Real>& e, const Real* ox, const Real* oy, const Real* oz, const Real* dx,
-                     const Real* dy, const Real* dz, Real* hit, Real* near, Real* far) {
-    detail::lane_roots<N>(
-        e,
-        [&](int k) {
-            return mapped_origin(e, Vec3<Real>{ox[k], oy[k], oz[k]});
-        },
-        dx, dy, dz, hit, near, far);
-}
-
-// The same for rays from one origin (a tile's eye rays): its mapped origin made once,
-// not once a lane (three divisions a lane fewer).
-template <int N, typename Real>
-void intersect_lanes(const Ellipsoid<Real>& e, const Vec3<Real>& origin, const Real* dx, const Real* dy,
-                     const Real* dz, Real* hit, Real* near, Real* far) {
-    // The origin as values, and the lambda a temporary: GCC keeps the loop scalar where
-    // it copies a struct in it (build.vectorised_loops).
-    const MappedOrigin<Real> o = mapped_origin(e, origin);
-    const Real x = o.o.x, y = o.o.y, z = o.o.z, c = o.c;
-    detail::lane_roots<N>(
-        e,
-        [=](int) {
-            return MappedOrigin<Real>{{x, y, z}, c};
-        },
-        dx, dy, dz, hit, near, far);
 }
 
 }  // namespace rt

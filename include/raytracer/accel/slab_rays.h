@@ -165,14 +165,6 @@ BuildItem<C> build_item(const Ellipsoid<Real>& e, std::uint32_t index) {
     return item;
 }
 
-// Whether a and b are the same point to the bit: -0 and 0 differ (the root solver may
-// take the sign of a zero), and so does a NaN from anything.
-template <typename Real>
-bool same_bits(const Vec3<Real>& a, const Vec3<Real>& b) {
-    auto same = [](Real x, Real y) { return x == y && std::signbit(x) == std::signbit(y); };
-    return same(a.x, b.x) && same(a.y, b.y) && same(a.z, b.z);
-}
-
 // The rays of a bundle's lanes, by axis and lane, each to be met within [0, t1[k].
 // Written by set() alone, every lane: not zeroed first (a few KB a tile).
 template <typename Real, int N>
@@ -183,17 +175,11 @@ struct LaneRays {
     Real from[3][N], along[3][N];  // the rays as given, for intersect_lanes()
     C inv[3][N], t1[N];            // for the slab tests
     unsigned unculled;             // lanes always met: a direction without a finite inverse
-    bool one_origin;               // every lane's ray starts at origin, bit for bit (eye rays)
-    V origin;
 
     // Lane k of lanes: origins[k] + t directions[k] for t in [0, end]; the other lanes'
     // rays zero (their inverses infinite; their answers are dropped). The lanes' rays are
     // gathered, then the inverses found for all lanes at once (vector divisions).
     void set(const V (&origins)[N], const V (&directions)[N], unsigned lanes, C end) {
-        one_origin = lanes != 0;
-        if (one_origin) origin = origins[lowest_bit(lanes)];
-        for (unsigned m = lanes; m != 0 && one_origin; m &= m - 1)
-            one_origin = same_bits(origins[lowest_bit(m)], origin);
         for (int k = 0; k < N; ++k) {
             const bool in = (lanes >> k & 1U) != 0;
             const V& o = origins[k];
@@ -219,10 +205,7 @@ struct LaneRays {
                    Real (&near)[N], Real (&far)[N]) const {
         const unsigned met = lanes & meeting(box);
         if (met == 0) return met;
-        if (one_origin)
-            intersect_lanes<N>(e, origin, along[0], along[1], along[2], hit, near, far);
-        else
-            intersect_lanes<N>(e, from[0], from[1], from[2], along[0], along[1], along[2], hit, near, far);
+        intersect_lanes<N>(e, from[0], from[1], from[2], along[0], along[1], along[2], hit, near, far);
         return met;
     }
     // The lanes whose guarded ray may meet the box, all lanes in one vector loop.

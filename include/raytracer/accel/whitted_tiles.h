@@ -1,8 +1,9 @@
 // The reference path (whitted.h) for a tile of pixels at once: each pixel gets the bytes
 // Whitted::pixel() gives it, from the same pieces of shade() in the same order, but the
-// shadow rays of the tile's hits to one light go to the geometry as one bundle
-// (Bvh::occluded() for lanes), which descends the tree once for all of them. The
-// tile's reflected rays are traced as a tile in turn, down to the last bounce.
+// eye rays of two tiles go down the tree as one block (eye_block.h), and the shadow rays
+// of a tile's hits to one light as one bundle (Bvh::occluded() for lanes): each
+// descends the tree once for all of its rays. The tile's reflected rays are traced as a
+// tile in turn, down to the last bounce.
 #pragma once
 
 #include <algorithm>
@@ -14,6 +15,7 @@
 
 #include "raytracer/accel/blocker_hints.h"
 #include "raytracer/accel/cleared_lanes.h"
+#include "raytracer/accel/eye_block.h"
 #include "raytracer/accel/light_shells.h"
 #include "raytracer/accel/slab_rays.h"
 #include "raytracer/bit_scan.h"
@@ -40,7 +42,7 @@ public:
         for (std::size_t li = 0; li < lights.size(); ++li) lights[li] = tracer.light_position(li);
         shells_ = LightShells<Real>(tracer.geometry(), lights);
         pixel_bytes(tracer.background(), background_);
-        for (int c = 0; c < kBlockColumns; ++c) std::memcpy(background_row_ + 3 * c, background_, 3);
+        for (int c = 0; c < kSpanColumns; ++c) std::memcpy(background_row_ + 3 * c, background_, 3);
     }
 
     // One bounce's lanes: the rays, what they hit, and their colours. The eye rays'
@@ -75,76 +77,83 @@ public:
 
     // The bytes of a band of `rows` <= kRows rows, the eye rays of row b through y[b] on
     // the near plane and its bytes from out[b], and `columns` columns, column c's through
-    // column_x[c]: a tile of kRows x kColumns pixels at a time, except that a block of
-    // kBlockColumns columns whose eye rays can meet no ellipsoid's box (Bvh::may_meet())
-    // gets BACK's bytes without a tile being set up. Blocks of 1 / 2 / 4 / 8 tiles:
-    // testSample through the tree 89.3 / 85.4 / 83.7 / 82.7 M instructions, testImgPlane
-    // (mostly covered) 152.4 / 149.1 / 147.4 / 146.6 M, against 116.7 M and 144.8 M
-    // with no blocks (callgrind, whole runs).
-    static constexpr int kRows = 4, kColumns = N / kRows, kBlockColumns = 8 * kColumns;
+    // column_x[c]. A span of kSpanColumns columns whose eye rays can meet no ellipsoid's
+    // box (Bvh::may_meet()) gets BACK's bytes at once; in the others the eye rays go to
+    // the tree a block of kBlockColumns columns at a time (eye_block.h), and are shaded a
+    // tile of kRows x kColumns pixels at a time.
+    static constexpr int kRows = 4, kColumns = N / kRows, kBlockColumns = 2 * kColumns,
+                         kSpanColumns = 4 * kBlockColumns;
     void band(const Real* column_x, int columns, const Real* y, std::uint8_t* const* out, int rows,
               Scratch& scratch) const {
         using C = AtLeastDouble<Real>;
         C y_lo = C(y[0]), y_hi = C(y[0]);
         for (int b = 1; b < rows; ++b) y_lo = std::min(y_lo, C(y[b])), y_hi = std::max(y_hi, C(y[b]));
         const C near_z = C(tracer_.near_z());
-        for (int block = 0; block < columns; block += kBlockColumns) {
-            const int block_end = std::min(block + kBlockColumns, columns);
-            // column_x is monotonic (each operation of Whitted::column_x() is): a block's
+        for (int span = 0; span < columns; span += kSpanColumns) {
+            const int span_end = std::min(span + kSpanColumns, columns);
+            // column_x is monotonic (each operation of Whitted::column_x() is): a span's
             // range is that of its ends.
-            const C x_first = C(column_x[block]), x_last = C(column_x[block_end - 1]);
+            const C x_first = C(column_x[span]), x_last = C(column_x[span_end - 1]);
             const C x_lo = std::min(x_first, x_last), x_hi = std::max(x_first, x_last);
-            if (!tracer_.geometry().may_meet(V{}, {x_lo, y_lo, near_z}, {x_hi, y_hi, near_z})) {
-                for (int b = 0; b < rows; ++b)
-                    std::memcpy(out[b] + std::ptrdiff_t{3} * block, background_row_,
-                                std::size_t{3} * static_cast<std::size_t>(block_end - block));
+            if (tracer_.geometry().may_meet(V{}, {x_lo, y_lo, near_z}, {x_hi, y_hi, near_z})) {
+                for (int block = span; block < span_end; block += kBlockColumns)
+                    eye_block(column_x, block, std::min(block + kBlockColumns, span_end), y, out, rows,
+                              scratch);
                 continue;
             }
-            for (int c0 = block; c0 < block_end; c0 += kColumns) {
-                Real x[N], tile_y[N];  // only the lanes in `lanes` are read
-                std::uint8_t* tile_out[N];
-                unsigned lanes = 0;
-                const int c_end = std::min(c0 + kColumns, block_end);
-                for (int b = 0; b < rows; ++b)
-                    for (int c = c0; c < c_end; ++c) {
-                        const int k = b * kColumns + (c - c0);
-                        x[k] = column_x[c], tile_y[k] = y[b], tile_out[k] = out[b] + std::ptrdiff_t{3} * c;
-                        lanes |= 1U << k;
-                    }
-                pixels(x, tile_y, lanes, tile_out, scratch);
-            }
-        }
-    }
-
-    // The bytes of up to N pixels whose eye rays go from the camera through (x[k], y[k]),
-    // for each lane k in lanes, to out[k].
-    void pixels(const Real (&x)[N], const Real (&y)[N], unsigned lanes, std::uint8_t* const (&out)[N],
-                Scratch& scratch) const {
-        Bounce& eye = scratch.bounces[0];
-        for (unsigned m = lanes; m != 0; m &= m - 1) {
-            const int k = lowest_bit(m);
-            eye.direction[k] = {x[k], y[k], tracer_.near_z()};
-        }
-        const unsigned hits = trace(0, lanes, scratch);
-        for (unsigned m = lanes & ~hits; m != 0; m &= m - 1) {  // BACK: its bytes, made once
-            const int k = lowest_bit(m);
-            out[k][0] = background_[0], out[k][1] = background_[1], out[k][2] = background_[2];
-        }
-        for (unsigned m = hits; m != 0; m &= m - 1) {
-            const int k = lowest_bit(m);
-            pixel_bytes(eye.colour(k), out[k]);
+            for (int b = 0; b < rows; ++b)
+                std::memcpy(out[b] + std::ptrdiff_t{3} * span, background_row_,
+                            std::size_t{3} * static_cast<std::size_t>(span_end - span));
         }
     }
 
 private:
-    // Whitted::trace() for each lane in lanes of bounce `depth` (0: the eye rays, which
-    // see BACK where they miss; then mirrored rays, which see black): its rays' colours;
-    // the lanes whose rays hit something. Whitted::shade()'s arithmetic for all lanes
-    // (shading.h over Lanes, a chunk at a time), its branches as lane sets.
+    // The pixels of columns [first, last) of a band (band()): their eye rays' hits from
+    // the tree, then tiles of those that hit something shaded; BACK where they miss.
+    void eye_block(const Real* column_x, int first, int last, const Real* y, std::uint8_t* const* out,
+                   int rows, Scratch& scratch) const {
+        EyeBlock<Real, kRows, kBlockColumns> rays(column_x + first, last - first, y, rows, tracer_.near_z());
+        tracer_.geometry().closest(rays);
+        Bounce& eye = scratch.bounces[0];
+        for (int c0 = first; c0 < last; c0 += kColumns) {
+            const int c_end = std::min(c0 + kColumns, last);
+            for (int b = 0; b < rows; ++b)  // BACK where a ray misses; a hit's bytes overwrite it
+                std::memcpy(out[b] + std::ptrdiff_t{3} * c0, background_row_,
+                            std::size_t{3} * static_cast<std::size_t>(c_end - c0));
+            if (!rays.tried()) continue;
+            std::uint8_t* tile_out[N];  // only the lanes in hits are read
+            unsigned hits = 0;
+            for (int b = 0; b < rows; ++b)
+                for (int c = c0; c < c_end; ++c) {
+                    const int k = b * kColumns + (c - c0);
+                    eye.hit[k] = rays.hit(b, c - first);
+                    if (!eye.hit[k].found()) continue;
+                    eye.direction[k] = {column_x[c], y[b], tracer_.near_z()};
+                    tile_out[k] = out[b] + std::ptrdiff_t{3} * c;
+                    hits |= 1U << k;
+                }
+            if (hits == 0) continue;
+            shade(0, hits, scratch);
+            for (unsigned m = hits; m != 0; m &= m - 1)
+                pixel_bytes(eye.colour(lowest_bit(m)), tile_out[lowest_bit(m)]);
+        }
+    }
+
+    // Whitted::trace() for each lane in lanes of a bounce of mirrored rays (depth >= 1,
+    // which see black where they miss): shade() of what they hit; the lanes whose rays hit
+    // something.
     unsigned trace(int depth, unsigned lanes, Scratch& scratch) const {
         Bounce& b = scratch.bounces[static_cast<std::size_t>(depth)];
-        tracer_.geometry().closest(b.origin, b.direction, lanes, depth == 0 ? kEyeRayMinT : kReflectedRayMinT,
-                                   b.hit);
+        tracer_.geometry().closest(b.origin, b.direction, lanes, kReflectedRayMinT, b.hit);
+        return shade(depth, lanes, scratch);
+    }
+
+    // Whitted::shade() for each lane in lanes of bounce `depth` (0: the eye rays, which
+    // see BACK where they miss) given b.hit: its rays' colours; the lanes whose rays hit
+    // something. Its arithmetic for all lanes (shading.h over Lanes, a chunk at a time),
+    // its branches as lane sets.
+    unsigned shade(int depth, unsigned lanes, Scratch& scratch) const {
+        Bounce& b = scratch.bounces[static_cast<std::size_t>(depth)];
         const HitLanes h = gather(b, lanes, depth < kMaxReflections);
         const Vec3<Q> miss = Vec3<Q>::from(depth == 0 ? tracer_.background() : V{});
         static_assert(LightShells<Real>::kMax + 1 <= ClearedLanes::kMax, "room for the shells and the own");
@@ -284,10 +293,10 @@ private:
     }
 
     const Tracer& tracer_;
-    LightShells<Real> shells_;                        // the ellipsoids that hold a light
-    BlockerHints hints_;                              // where each shadow query starts
-    std::uint8_t background_[3];                      // the bytes of BACK
-    std::uint8_t background_row_[3 * kBlockColumns];  // and a block's row of them
+    LightShells<Real> shells_;                       // the ellipsoids that hold a light
+    BlockerHints hints_;                             // where each shadow query starts
+    std::uint8_t background_[3];                     // the bytes of BACK
+    std::uint8_t background_row_[3 * kSpanColumns];  // and a span's row of them
 };
 
 }  // namespace rt
