@@ -1,5 +1,5 @@
 // The shadow tests of a packet's lanes at once (Tracer::shadow_lanes()):
-// ShadowPrefilter::decide_lanes() must never answer blocked or clear against
+// prefilter_shadow_lanes() must never answer blocked or clear against
 // intersect()'s answer, and Enclosures::contains_segments() must give every lane
 // contains_segment()'s, for random rays and for rays built to lie at the prefilter's
 // margins (roots near 0.001 and 1 give or take 1e-4, near-tangent lines, |o'|^2 near 1e4,
@@ -12,9 +12,9 @@
 
 #include "check.h"
 #include "random_checks.h"
+#include "raytracer/accel/shadow_prefilter.h"
 #include "raytracer/flat_sweep/enclosures.h"
 #include "raytracer/flat_sweep/hit_packet.h"
-#include "raytracer/flat_sweep/shadow_prefilter.h"
 #include "raytracer/reference/ellipsoid.h"
 
 namespace {
@@ -99,7 +99,6 @@ Ray random_ray(std::mt19937& g, const rt::Ellipsoid<double>& e) {
 TEST(lane_decide_never_contradicts_intersect) {
     std::mt19937 g(20261122);
     const std::vector<rt::Ellipsoid<double>> ellipsoids = random_ellipsoids(g, 12);
-    const rt::ShadowPrefilter<double> prefilter(ellipsoids);
     long long contradicting = 0, blocked = 0, clear = 0, unsure = 0;
     for (int round = 0; round < 40000; ++round) {
         const std::size_t i = g() % ellipsoids.size();
@@ -110,7 +109,7 @@ TEST(lane_decide_never_contradicts_intersect) {
             px[k] = rays[k].point.x, py[k] = rays[k].point.y, pz[k] = rays[k].point.z;
             tx[k] = rays[k].to_light.x, ty[k] = rays[k].to_light.y, tz[k] = rays[k].to_light.z;
         }
-        const auto lanes = prefilter.decide_lanes<N>(px, py, pz, tx, ty, tz, i);
+        const auto lanes = rt::prefilter_shadow_lanes<N>(ellipsoids[i], px, py, pz, tx, ty, tz);
         for (int k = 0; k < N; ++k) {
             if (lanes.unsure[k] != 0) {
                 ++unsure;

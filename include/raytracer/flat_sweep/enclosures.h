@@ -70,7 +70,7 @@ public:
     }
 
     // The same in two parts, for callers that have computed unit_radius2(point, i)
-    // themselves (ShadowPrefilter::decide_lanes()'s o2, the same operations):
+    // themselves (prefilter_shadow_lanes()'s o2, the same operations):
     // contains_segment() = light_within(light_index, i) && point_within(o2).
     bool light_within(std::size_t light_index, std::size_t i) const {
         return !light_inside_.empty() && light_inside_[light_index * n_ + i];

@@ -189,7 +189,7 @@ void Tracer<Real>::hit_colours(std::uint32_t i, int count, const Real* ox, const
 // Whether the shadow rays of the lanes of a packet with light li in front (l.front)
 // are blocked: sets l.lit to the lanes not shadowed and returns them.
 //
-// WHY: each candidate ellipsoid is tried on all lanes at once with decide_lanes()
+// WHY: each candidate ellipsoid is tried on all lanes at once with prefilter_shadow_lanes()
 // (vector instructions), and intersect() runs only for the rare lanes it is unsure
 // about. A lane is shadowed when SOME ellipsoid blocks its segment, and each test gives
 // intersect()'s exact answer, so the order of the tries does not matter; a lane is left
@@ -248,7 +248,7 @@ std::uint64_t Tracer<Real>::shadow_lanes(const HitPacket<Real, N>& p, LightLanes
         else if (lanes != 0)
             lanes &= ~enclosures_.template contains_segments<N>(p.px, p.py, p.pz, li, j, kLane);
         if (lanes == 0) return;
-        const auto answer = prefilter_.template decide_lanes<N>(p.px, p.py, p.pz, l.tx, l.ty, l.tz, j);
+        const auto answer = prefilter_shadow_lanes<N>(ellipsoids_[j], p.px, p.py, p.pz, l.tx, l.ty, l.tz);
         Bits blocked = 0, unsure = 0;
         RT_VECTOR_LOOP
         for (int k = 0; k < N; ++k) {

@@ -9,6 +9,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "raytracer/accel/shadow_prefilter.h"
 #include "raytracer/compiler.h"
 #include "raytracer/flat_sweep/bounding_sphere.h"
 #include "raytracer/flat_sweep/ellipsoid_set.h"
@@ -18,7 +19,6 @@
 #include "raytracer/flat_sweep/pair_blockers.h"
 #include "raytracer/flat_sweep/render_flat_sweep.h"
 #include "raytracer/flat_sweep/screen_bounds.h"
-#include "raytracer/flat_sweep/shadow_prefilter.h"
 #include "raytracer/flat_sweep/sphere_bounds.h"
 #include "raytracer/image.h"
 #include "raytracer/reference/ellipsoid.h"
@@ -74,7 +74,6 @@ public:
         bounds_ = SphereBounds<Real>(ellipsoids_);
         for (const Ellipsoid<Real>& e : ellipsoids_) eye_origin_.push_back(mapped_origin(e, V{}));
         enclosures_ = Enclosures<Real>(ellipsoids_, light_positions);
-        prefilter_ = ShadowPrefilter<Real>(ellipsoids_);
         // Shadow rays are tested a packet at a time (shadow_lanes()) and no other way, so
         // the flat sweep renders a scene only where that pays (can_render(); the tree
         // takes the others): where the image has at least as many pixels as there are
@@ -248,7 +247,6 @@ private:
     bool can_render_ = false;
     bool culling_tables_ = false;  // light_cones_ and pair_blockers_ built and exact
     Enclosures<Real> enclosures_;
-    ShadowPrefilter<Real> prefilter_;
     PairBlockers<Real> pair_blockers_;  // where culling_tables_
     LightCones<C> light_cones_;         // likewise
     V background_;
