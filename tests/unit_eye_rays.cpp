@@ -12,8 +12,8 @@
 #include "check.h"
 #include "random_checks.h"
 #include "raytracer/flat_sweep/eye_rays.h"
-#include "raytracer/flat_sweep/tracer.h"
 #include "raytracer/reference/ellipsoid.h"
+#include "raytracer/reference/spec_rules.h"
 
 namespace {
 
@@ -73,7 +73,7 @@ struct Nearest {
 template <typename Real>
 Nearest<Real> reference(const std::vector<rt::Ellipsoid<Real>>& ellipsoids,
                         const std::vector<rt::MappedOrigin<Real>>& origins, const rt::Vec3<Real>& direction) {
-    const Real min_t = rt::Tracer<Real>::eye_min_t();
+    const Real min_t = rt::visible_beyond(Real(rt::kEyeRayMinT));
     Nearest<Real> best;
     for (std::uint32_t i = 0; i < ellipsoids.size(); ++i) {
         const rt::Roots<Real> r = rt::intersect_mapped(ellipsoids[i], origins[i], direction);
@@ -103,8 +103,7 @@ long long differing_pixels(const std::vector<rt::SphereSpec>& spheres, const Fru
     for (int c = 0; c < f.columns; ++c)
         column_x[static_cast<std::size_t>(c)] = left + (right - left) * static_cast<Real>(c) / columns;
     const std::vector<int> first(spheres.size(), 0), last(spheres.size(), f.columns - 1);
-    const rt::EyeRays<Real> eye_rays(ellipsoids, origins, rt::Tracer<Real>::eye_min_t(), column_x, first,
-                                     last);
+    const rt::EyeRays<Real> eye_rays(ellipsoids, origins, column_x, first, last);
     rt::EyeRowHits<Real> found(f.columns);
 
     long long differ = 0;

@@ -121,8 +121,7 @@ EyeRays<Real> make_eye_rays(const Tracer<Real>& tracer, const std::vector<PixelR
         first_columns.push_back(rects[i].first_column);
         last_columns.push_back(rects[i].last_column);
     }
-    return EyeRays<Real>(ellipsoids, eye_origins, Tracer<Real>::eye_min_t(), column_x, first_columns,
-                         last_columns);
+    return EyeRays<Real>(ellipsoids, eye_origins, column_x, first_columns, last_columns);
 }
 
 // One image through the flat sweep: what every band of rows shares, made once, and the

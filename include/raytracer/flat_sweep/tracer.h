@@ -165,9 +165,6 @@ public:
     // (mapped_origin()), for eye rays intersected by the caller.
     const Ellipsoid<Real>& ellipsoid(std::size_t i) const { return ellipsoids_[i]; }
     const MappedOrigin<Real>& eye_origin(std::size_t i) const { return eye_origin_[i]; }
-    // Whether an eye ray's root t counts as a hit beyond the near plane: the reference's test
-    // (a root within 8 scene ulps of t = 1 is on the plane, see there).
-    static Real eye_min_t() { return visible_beyond(Real(kEyeRayMinT)); }
 
     // Per ellipsoid, the columns of a row that may see it (screen_bounds.h).
     RowSpans<C> row_spans(const Scene& scene) const {
