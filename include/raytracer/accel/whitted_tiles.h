@@ -43,6 +43,14 @@ public:
         shells_ = LightShells<Real>(tracer.geometry(), lights);
         pixel_bytes(tracer.background(), background_);
         for (int c = 0; c < kSpanColumns; ++c) std::memcpy(background_row_ + 3 * c, background_, 3);
+        // An eye ray that sees an ellipsoid no light nor mirror adds to (Kd = Ks = Kr = 0)
+        // gets its ambient term's bytes, known before any pixel (Whitted::shade()).
+        flat_.resize(tracer.ellipsoid_count());
+        for (std::uint32_t i = 0; i < flat_.size(); ++i) {
+            const typename Tracer::Material& m = tracer.material(i);
+            flat_[i].is = m.no_lighting && !(tracer.geometry().ellipsoid(i).kr > 0);
+            pixel_bytes(m.ambient, flat_[i].bytes);
+        }
     }
 
     // One bounce's lanes: the rays, what they hit, and their colours. The eye rays'
@@ -128,8 +136,13 @@ private:
                     const int k = b * kColumns + (c - c0);
                     eye.hit[k] = rays.hit(b, c - first);
                     if (!eye.hit[k].found()) continue;
+                    std::uint8_t* const bytes = out[b] + std::ptrdiff_t{3} * c;
+                    if (const Flat& flat = flat_[eye.hit[k].ellipsoid]; flat.is) {
+                        std::memcpy(bytes, flat.bytes, 3);
+                        continue;
+                    }
                     eye.direction[k] = {column_x[c], y[b], tracer_.near_z()};
-                    tile_out[k] = out[b] + std::ptrdiff_t{3} * c;
+                    tile_out[k] = bytes;
                     hits |= 1U << k;
                 }
             if (hits == 0) continue;
@@ -293,8 +306,13 @@ private:
     }
 
     const Tracer& tracer_;
-    LightShells<Real> shells_;                       // the ellipsoids that hold a light
-    BlockerHints hints_;                             // where each shadow query starts
+    LightShells<Real> shells_;  // the ellipsoids that hold a light
+    BlockerHints hints_;        // where each shadow query starts
+    struct Flat {
+        bool is = false;        // Kd = Ks = Kr = 0
+        std::uint8_t bytes[3];  // and then its pixels' bytes
+    };
+    std::vector<Flat> flat_;                         // per ellipsoid
     std::uint8_t background_[3];                     // the bytes of BACK
     std::uint8_t background_row_[3 * kSpanColumns];  // and a span's row of them
 };
