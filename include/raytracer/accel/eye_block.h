@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <limits>
 
+#include "raytracer/accel/silhouette.h"
 #include "raytracer/accel/slab_rays.h"
 #include "raytracer/compiler.h"
 #include "raytracer/reference/ellipsoid.h"
@@ -83,13 +84,16 @@ public:
         // their results are never read.
         for (int c = 0; c < Columns; ++c) x_[c] = column_x[std::min(c, columns - 1)];
         for (int b = 0; b < Rows; ++b) y_[b] = row_y[std::min(b, rows - 1)];
+        x_lo_ = x_hi_ = C(x_[0]);
+        for (int c = 1; c < Columns; ++c)
+            x_lo_ = std::min(x_lo_, C(x_[c])), x_hi_ = std::max(x_hi_, C(x_[c]));
+        using std::abs;
+        margin_ = columns >= 2 ? 2 * abs(C(x_[1]) - C(x_[0])) : C(0);
     }
 
     // The directions' range, per axis, for the block's slab ray.
     void directions(C (&lo)[3], C (&hi)[3]) const {
-        lo[0] = hi[0] = C(x_[0]), lo[1] = hi[1] = C(y_[0]), lo[2] = hi[2] = C(near_z_);
-        for (int c = 1; c < Columns; ++c)
-            lo[0] = std::min(lo[0], C(x_[c])), hi[0] = std::max(hi[0], C(x_[c]));
+        lo[0] = x_lo_, hi[0] = x_hi_, lo[1] = hi[1] = C(y_[0]), lo[2] = hi[2] = C(near_z_);
         for (int b = 1; b < Rows; ++b) lo[1] = std::min(lo[1], C(y_[b])), hi[1] = std::max(hi[1], C(y_[b]));
     }
 
@@ -126,8 +130,12 @@ public:
         const Real sx = e.scale.x;
         RT_VECTOR_LOOP
         for (int c = 0; c < Columns; ++c) dx[c] = x_[c] / sx;
+        // Rows outside the silhouette are skipped too, where pixels are apart (silhouette.h).
+        const Silhouette<C> silhouette(e, C(near_z_));
+        const bool narrow = box != nullptr && margin_ > 0;
         for (int b = 0; b < rows_; ++b) {
             if (box != nullptr && !row_may_meet(*box, b, x_enter, x_leave, z_enter, z_leave)) continue;
+            if (narrow && !silhouette.row_may_meet(C(y_[b]), x_lo_, x_hi_, margin_)) continue;
             merge_eye_row<Columns>(
                 o, [&](int c) { return dx[c]; }, y_[b] / e.scale.y, near_z_ / e.scale.z, index, 0, Columns,
                 t_[b], ellipsoid_[b], inside_[b]);
@@ -176,6 +184,7 @@ private:
     }
 
     Real x_[Columns], y_[Rows], near_z_;
+    C x_lo_, x_hi_, margin_;  // the columns' range, and two pixels' spacing (0: one column)
     int rows_;
     bool tried_ = false;
     // Each pixel's nearest hit so far: root t of ellipsoid (kNone: none yet), inside

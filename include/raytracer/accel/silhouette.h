@@ -1,0 +1,61 @@
+// Which rows of eye rays may meet an ellipsoid: its silhouette from the camera, row by
+// row. EyeBlock skips a row of a block that lies outside it (an ellipsoid near the
+// camera covers far less of the screen than its box does: testImgPlane's sphere a
+// quarter of it, its box all of it).
+//
+// The eye rays of the row at height y are d(x) = (x, y, near_z). Mapped into the unit
+// space of the ellipsoid grown by kCullingGap of each scale (o' = -C / s', d' = d / s'),
+// the line meets it where disc(x) = (o'.d')^2 - |d'|^2 (|o'|^2 - 1) >= 0, a quadratic
+// A x^2 + 2 B x + K in x: for an ellipsoid wholly in front of the eye, A < 0 and the
+// row's rays that may meet it are one interval of x, between the roots. A ray that
+// meets the ellipsoid itself lies deep inside that interval: the growth is 1e-3 in the
+// unit space, and where |o'| <= 1000 the rounding of the interval's ends is about 1e-10
+// of the same scale (the argument of the flat sweep's RowSpans, screen_bounds.h); a
+// margin of two pixels' spacing is kept besides. Elsewhere (an ellipsoid that reaches
+// the camera's plane or lies far away) no row is ruled out.
+#pragma once
+
+#include <cmath>
+
+#include "raytracer/reference/ellipsoid.h"
+#include "raytracer/reference/unit_sphere_roots.h"
+
+namespace rt {
+
+template <typename C>
+class Silhouette {
+public:
+    template <typename Real>
+    Silhouette(const Ellipsoid<Real>& e, C near_z) : near_z_(near_z) {
+        using std::abs;
+        const C grow = 1 + C(kCullingGap);
+        const C sx = abs(C(e.scale.x)) * grow, sy = abs(C(e.scale.y)) * grow, sz = abs(C(e.scale.z)) * grow;
+        ox_ = -C(e.centre.x) / sx, oy_ = -C(e.centre.y) / sy, oz_ = -C(e.centre.z) / sz;
+        kx_ = 1 / sx, ky_ = 1 / sy, kz_ = 1 / sz;
+        const C o2 = ox_ * ox_ + oy_ * oy_ + oz_ * oz_;
+        gamma_ = o2 - 1;
+        a_ = kx_ * kx_ * (1 - oy_ * oy_ - oz_ * oz_);
+        usable_ = C(e.centre.z) + sz < 0 && o2 <= C(1e6) && a_ < 0;
+    }
+
+    // Whether the eye rays of the row at height y with x in [x_lo, x_hi] may meet the
+    // ellipsoid, margin (two pixels' spacing) allowed on both sides.
+    bool row_may_meet(C y, C x_lo, C x_hi, C margin) const {
+        if (!usable_) return true;
+        using std::sqrt;
+        const C beta0 = oy_ * ky_ * y + oz_ * kz_ * near_z_;
+        const C b = ox_ * kx_ * beta0;
+        const C k = beta0 * beta0 - (ky_ * ky_ * y * y + kz_ * kz_ * near_z_ * near_z_) * gamma_;
+        const C disc = b * b - a_ * k;
+        if (!(disc >= 0)) return false;
+        const C root = sqrt(disc);
+        // a_ < 0: (-b + root) / a_ is the smaller root.
+        return (-b - root) / a_ >= x_lo - margin && (-b + root) / a_ <= x_hi + margin;
+    }
+
+private:
+    C near_z_, ox_, oy_, oz_, kx_, ky_, kz_, gamma_, a_;
+    bool usable_;
+};
+
+}  // namespace rt
