@@ -109,13 +109,15 @@ TEST(lane_decide_never_contradicts_intersect) {
             px[k] = rays[k].point.x, py[k] = rays[k].point.y, pz[k] = rays[k].point.z;
             tx[k] = rays[k].to_light.x, ty[k] = rays[k].to_light.y, tz[k] = rays[k].to_light.z;
         }
-        const auto lanes = rt::prefilter_shadow_lanes<N>(ellipsoids[i], px, py, pz, tx, ty, tz);
+        const rt::PrefilterAnswer lanes =
+            rt::prefilter_shadow_lanes<N>(ellipsoids[i], px, py, pz, tx, ty, tz);
+        CHECK_EQ(lanes.blocked & lanes.unsure, 0U);
         for (int k = 0; k < N; ++k) {
-            if (lanes.unsure[k] != 0) {
+            if ((lanes.unsure >> k & 1U) != 0) {
                 ++unsure;
                 continue;
             }
-            const bool says_blocked = lanes.blocked[k] != 0;
+            const bool says_blocked = (lanes.blocked >> k & 1U) != 0;
             (says_blocked ? blocked : clear) += 1;
             contradicting += says_blocked != blocks(ellipsoids[i], rays[k].point, rays[k].to_light);
         }

@@ -144,7 +144,8 @@ int eye_pixels_differing(const Crowd<Real>& c, unsigned seed, int blocks, long& 
         const double step = g() % 2 ? uniform(g, 1e-4, 1e-2) : uniform(g, 0.02, 0.5);
         const int rows = 1 + static_cast<int>(g() % kRows), columns = 1 + static_cast<int>(g() % kColumns);
         Real x[kColumns], y[kRows];
-        for (int i = 0; i < columns; ++i) x[i] = Real(x0 + step * (i - columns / 2));
+        const int centre = columns / 2;  // the aimed-at column
+        for (int i = 0; i < columns; ++i) x[i] = Real(x0 + step * (i - centre));
         for (int b = 0; b < rows; ++b) y[b] = Real(y0 - step * b);
         if (g() % 8 == 0) x[g() % columns] = g() % 2 ? Real(0) : -Real(0);
         rt::EyeBlock<Real, kRows, kColumns> block(x, columns, y, rows, near_z);
@@ -360,16 +361,21 @@ TEST(bvh_eye_blocks_match_brute_force) {
 }
 
 // Copies of ellipsoids before and after them: equal roots, where the lower index must
-// win whichever the descent tries first.
+// win whichever the descent tries first. In double the camera is within every guard
+// (the blocks cull); in float (a guard of 50 smallest scales) beyond the thin ones', where
+// the block must go ray by ray: culling there found 70-117 wrong pixels.
+template <typename Real>
+long eye_ties_differing(unsigned seed, long& hits) {
+    Crowd<Real> c = crowd<Real>(seed, 60);
+    const std::vector<rt::Ellipsoid<Real>> first(c.all.begin(), c.all.begin() + 20);
+    c.all.insert(c.all.end(), first.begin(), first.end());
+    c.all.insert(c.all.begin(), first.begin(), first.end());
+    return eye_pixels_differing(c, seed, 1500, hits);
+}
 TEST(bvh_eye_blocks_break_ties_as_brute_force) {
     long hits = 0;
-    for (unsigned seed = 2; seed <= 8; seed += 2) {
-        Crowd<double> c = crowd<double>(seed, 60);
-        const std::vector<rt::Ellipsoid<double>> first(c.all.begin(), c.all.begin() + 20);
-        c.all.insert(c.all.end(), first.begin(), first.end());
-        c.all.insert(c.all.begin(), first.begin(), first.end());
-        CHECK_EQ(eye_pixels_differing(c, seed, 1500, hits), 0);
-    }
+    for (unsigned seed = 2; seed <= 8; seed += 2) CHECK_EQ(eye_ties_differing<double>(seed, hits), 0);
+    for (unsigned seed = 1; seed <= 8; ++seed) CHECK_EQ(eye_ties_differing<float>(seed, hits), 0);
     CHECK(hits > 5000);
 }
 

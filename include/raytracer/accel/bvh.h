@@ -169,20 +169,20 @@ public:
             for (std::uint32_t i = 0; i < items_.size(); ++i) block.add(items_[i], index_[i]);
             return;
         }
-        const bool culls = guarded(o, o);  // else each ellipsoid of a leaf met is tried, as by one ray
-        auto leaf = [&](Child leaf, C& t1) {
+        if (!guarded(o, o)) {  // the camera beyond some guard: ray by ray, each culled where it may be
+            for (int b = 0; b < block.rows(); ++b)
+                for (int c = 0; c < block.columns(); ++c)
+                    block.take(b, c, closest(V{}, block.direction(b, c), kEyeRayMinT));
+            return;
+        }
+        traverse<true, true>(ray, std::numeric_limits<C>::infinity(), [&](Child leaf, C& t1) {
             for (std::uint32_t i = leaf.first; i < leaf.first + leaf.count; ++i) {
                 const BuildBox<C> box = inflated_box<C>(items_[i]);
-                if (!culls)
-                    block.add(items_[i], index_[i]);
-                else if (meets_box(ray, box, t1))
-                    block.add(items_[i], index_[i], &box);
+                if (meets_box(ray, box, t1)) block.add(items_[i], index_[i], &box);
             }
             if (block.tried()) t1 = C(block.farthest());
             return false;
-        };
-        culls ? traverse<true, true>(ray, std::numeric_limits<C>::infinity(), leaf)
-              : traverse<true, false>(ray, std::numeric_limits<C>::infinity(), leaf);
+        });
     }
 
     // As BruteForce::occluded(): whether some ellipsoid blocks the shadow ray, trying first the hint
@@ -261,17 +261,12 @@ public:
             unsigned met = open & rays.meeting(box);
             if (met == 0) return;
             if constexpr (std::numeric_limits<Real>::digits >= std::numeric_limits<double>::digits) {
-                const PrefilterLanes<Real, N> answer =
+                const PrefilterAnswer answer =
                     prefilter_shadow_lanes<N>(items_[i], rays.from[0], rays.from[1], rays.from[2],
                                               rays.along[0], rays.along[1], rays.along[2]);
-                unsigned yes = 0, unsure = 0;
-                RT_VECTOR_LOOP
-                for (int k = 0; k < N; ++k) {
-                    yes |= answer.blocked[k] != 0 ? 1U << k : 0U;
-                    unsure |= answer.unsure[k] != 0 ? 1U << k : 0U;
-                }
-                if ((yes & met) != 0) blocked |= yes & met, blocker = i;
-                met &= unsure;
+                const auto yes = static_cast<unsigned>(answer.blocked) & met;
+                if (yes != 0) blocked |= yes, blocker = i;
+                met &= static_cast<unsigned>(answer.unsure);
                 if (met == 0) return;
             }
             Real hit[N], near[N], far[N];

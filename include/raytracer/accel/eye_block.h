@@ -17,6 +17,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -79,9 +80,10 @@ public:
     // The eye ray of row b and column c runs from the camera (0, 0, 0) along
     // (column_x[c], row_y[b], near_z), for b < rows <= Rows and c < columns <= Columns.
     EyeBlock(const Real* column_x, int columns, const Real* row_y, int rows, Real near_z)
-        : near_z_(near_z), rows_(rows) {
+        : near_z_(near_z), rows_(rows), columns_(columns) {
+        assert(1 <= columns && columns <= Columns && 1 <= rows && rows <= Rows);
         // Columns past `columns` repeat the last one: the loops run over all of them, and
-        // their results are never read.
+        // their hits are never asked for (they only repeat the last column's).
         for (int c = 0; c < Columns; ++c) x_[c] = column_x[std::min(c, columns - 1)];
         for (int b = 0; b < Rows; ++b) y_[b] = row_y[std::min(b, rows - 1)];
         x_lo_ = x_hi_ = C(x_[0]);
@@ -97,10 +99,21 @@ public:
         for (int b = 1; b < Rows; ++b) lo[1] = std::min(lo[1], C(y_[b])), hi[1] = std::max(hi[1], C(y_[b]));
     }
 
-    // Whether some ellipsoid was tried (add()); if not, no pixel has a hit.
+    int rows() const { return rows_; }
+    int columns() const { return columns_; }
+    Vec3<Real> direction(int b, int c) const { return {x_[c], y_[b], near_z_}; }
+
+    // Whether some ellipsoid was tried (add(), take()); if not, no pixel has a hit.
     bool tried() const { return tried_; }
-    // The hit of row b and column c (where tried()), as Bvh::closest() gives it.
+    // The hit of row b and column c (where tried()): a found one as Bvh::closest() gives
+    // it; none has an infinite t.
     NearestHit<Real> hit(int b, int c) const { return {t_[b][c], ellipsoid_[b][c], inside_[b][c] != 0}; }
+    // Sets it from a query of the pixel's ray alone.
+    void take(int b, int c, const NearestHit<Real>& hit) {
+        if (!tried_) set_up();
+        t_[b][c] = hit.found() ? hit.t : std::numeric_limits<Real>::infinity();
+        ellipsoid_[b][c] = hit.ellipsoid, inside_[b][c] = hit.inside ? 1 : 0;
+    }
     // Infinity where some pixel has no hit yet; else the farthest of their roots.
     Real farthest() const {
         Real far = 0;
@@ -185,17 +198,17 @@ private:
 
     Real x_[Columns], y_[Rows], near_z_;
     C x_lo_, x_hi_, margin_;  // the columns' range, and two pixels' spacing (0: one column)
-    int rows_;
-    bool tried_ = false;
     // Each pixel's nearest hit so far: root t of ellipsoid (kNone: none yet), inside
     // when the far root was taken. As wide as the index: with mixed widths GCC's vector
     // code packs and unpacks the lanes.
     Real t_[Rows][Columns];
-    std::uint32_t ellipsoid_[Rows][Columns], inside_[Rows][Columns];
     // 1 / the directions' components per column and row, and for z; unculled_ where one
-    // of a non-zero component is not finite (a subnormal scene: every box is met).
+    // of a non-zero component is not finite (a pixel's x or y may be subnormal where the
+    // block's range, which the descent's slab ray takes, is not): then every box is met.
     C inverse_x_[Columns], inverse_y_[Rows], inverse_z_;
-    bool unculled_ = false;
+    std::uint32_t ellipsoid_[Rows][Columns], inside_[Rows][Columns];
+    int rows_, columns_;
+    bool tried_ = false, unculled_ = false;
 };
 
 }  // namespace rt

@@ -15,21 +15,22 @@
 #include <cmath>
 #include <limits>
 
+#include "raytracer/compiler.h"
+#include "raytracer/lanes.h"
 #include "raytracer/reference/ellipsoid.h"
 #include "raytracer/reference/spec_rules.h"
 #include "raytracer/vec3.h"
 
 namespace rt {
 
-// The prefilter's answers for N rays, lane k in element k (masks are 1 or 0).
-template <typename Real, int N>
-struct PrefilterLanes {
-    Real blocked[N], unsure[N];
+// The prefilter's answers for N rays: bit k for ray k.
+struct PrefilterAnswer {
+    LaneBits blocked, unsure;
 };
 
 // Whether ellipsoid e blocks the shadow ray point + t to_light, 0.001 < t < 1, for N rays
-// at once, ray k from (px, py, pz)[k] along (tx, ty, tz)[k]: blocked[k] = 1 where it
-// clearly does, unsure[k] = 1 where intersect() must decide (else 0). The roots' common
+// at once, ray k from (px, py, pz)[k] along (tx, ty, tz)[k]: in blocked where it clearly
+// does, in unsure where intersect() must decide, else in neither. The roots' common
 // factor 1/a is multiplied out (a > 0): a t = -b -+ sqrt(b^2 - a c) against a times each
 // limit. With |o'|^2 <= 1e4 and a >= 1e-4, b^2 - a c is off by a few ulps of a |o'|^2, so
 // h = (b^2 - a c) / a by under 1e-11 and the roots by under 1e-8: far inside the margins.
@@ -37,44 +38,49 @@ struct PrefilterLanes {
 // GCC's loops scalar), so the loop runs as vector instructions; a lane that a branch
 // would have stopped computes values (even NaN from a negative sqrt) that no mask takes.
 template <int N, typename Real>
-PrefilterLanes<Real, N> prefilter_shadow_lanes(const Ellipsoid<Real>& e, const Real* px, const Real* py,
-                                               const Real* pz, const Real* tx, const Real* ty,
-                                               const Real* tz) {
+PrefilterAnswer prefilter_shadow_lanes(const Ellipsoid<Real>& e, const Real* px, const Real* py,
+                                       const Real* pz, const Real* tx, const Real* ty, const Real* tz) {
     // float's own rounding (1e-7 relative) is too close to the margins below.
     static_assert(std::numeric_limits<Real>::digits >= std::numeric_limits<double>::digits,
                   "the prefilter needs double or wider");
-    using C = Real;
-    auto mask = [](bool b) { return b ? C(1) : C(0); };
-    PrefilterLanes<Real, N> out;
+    auto mask = [](bool b) { return b ? Real(1) : Real(0); };
+    Real blocked[N], unsure[N];
     using std::sqrt;
-    const Vec3<C> centre = e.centre, inverse{C(1) / e.scale.x, C(1) / e.scale.y, C(1) / e.scale.z};
-    const C lo = C(kShadowRayMinT), margin = C(1e-4);
+    const Vec3<Real> centre = e.centre,
+                     inverse{Real(1) / e.scale.x, Real(1) / e.scale.y, Real(1) / e.scale.z};
+    const Real lo = Real(kShadowRayMinT), margin = Real(1e-4);
     for (int k = 0; k < N; ++k) {
-        const C ox = (px[k] - centre.x) * inverse.x, oy = (py[k] - centre.y) * inverse.y,
-                oz = (pz[k] - centre.z) * inverse.z;
-        const C dx = tx[k] * inverse.x, dy = ty[k] * inverse.y, dz = tz[k] * inverse.z;
-        const C o_o = ox * ox + oy * oy + oz * oz, a = dx * dx + dy * dy + dz * dz;
-        const C usable = mask(o_o <= C(1e4)) * mask(a >= C(1e-4));
-        const C b = ox * dx + oy * dy + oz * dz;
-        const C disc = b * b - a * (o_o - C(1));
-        const C misses = mask(disc < C(-1e-6) * a), crosses = mask(disc > C(1e-3) * a);
-        const C root = sqrt(disc);
-        const C near = -b - root, far = -b + root;
-        const C in_lo = (lo + margin) * a, in_hi = (C(1) - margin) * a;
-        const C out_lo = (lo - margin) * a, out_hi = (C(1) + margin) * a;
-        const C near_in = mask(near > in_lo) * mask(near < in_hi);
-        const C far_in = mask(far > in_lo) * mask(far < in_hi);
-        const C near_out = mask(near < out_lo) + mask(near > out_hi);  // at most one holds
-        const C far_out = mask(far < out_lo) + mask(far > out_hi);
-        const C any_in = near_in + far_in - near_in * far_in;
-        const C yes = usable * crosses * any_in;
+        const Real ox = (px[k] - centre.x) * inverse.x, oy = (py[k] - centre.y) * inverse.y,
+                   oz = (pz[k] - centre.z) * inverse.z;
+        const Real dx = tx[k] * inverse.x, dy = ty[k] * inverse.y, dz = tz[k] * inverse.z;
+        const Real o_o = ox * ox + oy * oy + oz * oz, a = dx * dx + dy * dy + dz * dz;
+        const Real usable = mask(o_o <= Real(1e4)) * mask(a >= Real(1e-4));
+        const Real b = ox * dx + oy * dy + oz * dz;
+        const Real disc = b * b - a * (o_o - Real(1));
+        const Real misses = mask(disc < Real(-1e-6) * a), crosses = mask(disc > Real(1e-3) * a);
+        const Real root = sqrt(disc);
+        const Real near = -b - root, far = -b + root;
+        const Real in_lo = (lo + margin) * a, in_hi = (Real(1) - margin) * a;
+        const Real out_lo = (lo - margin) * a, out_hi = (Real(1) + margin) * a;
+        const Real near_in = mask(near > in_lo) * mask(near < in_hi);
+        const Real far_in = mask(far > in_lo) * mask(far < in_hi);
+        const Real near_out = mask(near < out_lo) + mask(near > out_hi);  // at most one holds
+        const Real far_out = mask(far < out_lo) + mask(far > out_hi);
+        const Real any_in = near_in + far_in - near_in * far_in;
+        const Real yes = usable * crosses * any_in;
         // misses and crosses exclude each other; a lane with a root clearly in is not
         // clearly out.
-        const C no = usable * (misses + crosses * near_out * far_out);
-        out.blocked[k] = yes;
-        out.unsure[k] = C(1) - yes - no;
+        const Real no = usable * (misses + crosses * near_out * far_out);
+        blocked[k] = yes;
+        unsure[k] = Real(1) - yes - no;
     }
-    return out;
+    PrefilterAnswer answer{0, 0};
+    RT_VECTOR_LOOP
+    for (int k = 0; k < N; ++k) {
+        answer.blocked |= blocked[k] != 0 ? kLaneBits<N>.bit[k] : 0;
+        answer.unsure |= unsure[k] != 0 ? kLaneBits<N>.bit[k] : 0;
+    }
+    return answer;
 }
 
 }  // namespace rt

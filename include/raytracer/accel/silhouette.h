@@ -5,9 +5,9 @@
 //
 // The eye rays of the row at height y are d(x) = (x, y, near_z). Mapped into the unit
 // space of the ellipsoid grown by kCullingGap of each scale (o' = -C / s', d' = d / s'),
-// the line meets it where disc(x) = (o'.d')^2 - |d'|^2 (|o'|^2 - 1) >= 0, a quadratic
-// A x^2 + 2 B x + K in x: for an ellipsoid wholly in front of the eye, A < 0 and the
-// row's rays that may meet it are one interval of x, between the roots. A ray that
+// the line meets it where disc = (o'.d')^2 - |d'|^2 (|o'|^2 - 1) >= 0, a quadratic
+// A u^2 + 2 B u + K in u = d'.x = x / s'.x: for an ellipsoid wholly in front of the eye,
+// A < 0 and the row's rays that may meet it are one interval of u, between the roots. A ray that
 // meets the ellipsoid itself lies deep inside that interval: the growth is 1e-3 in the
 // unit space, and where |o'| <= 1000 the rounding of the interval's ends is about 1e-10
 // of the same scale (the argument of the flat sweep's RowSpans, screen_bounds.h); a
@@ -34,23 +34,33 @@ public:
         kx_ = 1 / sx, ky_ = 1 / sy, kz_ = 1 / sz;
         const C o2 = ox_ * ox_ + oy_ * oy_ + oz_ * oz_;
         gamma_ = o2 - 1;
-        a_ = kx_ * kx_ * (1 - oy_ * oy_ - oz_ * oz_);
-        usable_ = C(e.centre.z) + sz < 0 && o2 <= C(1e6) && a_ < 0;
+        a_ = 1 - oy_ * oy_ - oz_ * oz_;
+        using std::isfinite;
+        usable_ = C(e.centre.z) + sz < 0 && o2 <= C(1e6) && a_ < 0 && isfinite(kx_) && isfinite(ky_) &&
+                  isfinite(kz_);
     }
 
     // Whether the eye rays of the row at height y with x in [x_lo, x_hi] may meet the
-    // ellipsoid, margin (two pixels' spacing) allowed on both sides.
+    // ellipsoid, margin (two pixels' spacing) allowed on both sides. The quadratic is
+    // taken in u = x / s'.x, whose terms are the unit space's (no square of a scale
+    // over- or underflows); where a term is not finite, no row is ruled out.
     bool row_may_meet(C y, C x_lo, C x_hi, C margin) const {
         if (!usable_) return true;
+        using std::isfinite;
         using std::sqrt;
-        const C beta0 = oy_ * ky_ * y + oz_ * kz_ * near_z_;
-        const C b = ox_ * kx_ * beta0;
-        const C k = beta0 * beta0 - (ky_ * ky_ * y * y + kz_ * kz_ * near_z_ * near_z_) * gamma_;
+        const C dy = y * ky_, dz = near_z_ * kz_;  // d'.y, d'.z
+        const C beta0 = oy_ * dy + oz_ * dz;
+        const C b = ox_ * beta0;
+        const C k = beta0 * beta0 - (dy * dy + dz * dz) * gamma_;
         const C disc = b * b - a_ * k;
+        if (!isfinite(disc)) return true;
         if (!(disc >= 0)) return false;
         const C root = sqrt(disc);
         // a_ < 0: (-b + root) / a_ is the smaller root.
-        return (-b - root) / a_ >= x_lo - margin && (-b + root) / a_ <= x_hi + margin;
+        const C u_lo = (-b + root) / a_, u_hi = (-b - root) / a_;
+        const C from = (x_lo - margin) * kx_, to = (x_hi + margin) * kx_;
+        if (!isfinite(u_lo) || !isfinite(u_hi) || !isfinite(from) || !isfinite(to)) return true;
+        return u_hi >= from && u_lo <= to;
     }
 
 private:

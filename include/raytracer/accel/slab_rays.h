@@ -172,7 +172,7 @@ struct LaneRays {
     using C = AtLeastDouble<Real>;
     using V = Vec3<Real>;
 
-    Real from[3][N], along[3][N];  // the rays as given, for intersect_lanes()
+    Real from[3][N], along[3][N];  // the rays as given, for intersect_lanes() and the prefilter
     C inv[3][N], t1[N];            // for the slab tests
     unsigned unculled;             // lanes always met: a direction without a finite inverse
 

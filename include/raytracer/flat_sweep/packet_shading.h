@@ -11,6 +11,7 @@
 #include <type_traits>
 
 #include "raytracer/accel/intersect_lanes.h"
+#include "raytracer/accel/shadow_prefilter.h"
 #include "raytracer/bit_scan.h"
 #include "raytracer/compiler.h"
 #include "raytracer/flat_sweep/hit_packet.h"
@@ -248,14 +249,9 @@ std::uint64_t Tracer<Real>::shadow_lanes(const HitPacket<Real, N>& p, LightLanes
         else if (lanes != 0)
             lanes &= ~enclosures_.template contains_segments<N>(p.px, p.py, p.pz, li, j, kLane);
         if (lanes == 0) return;
-        const auto answer = prefilter_shadow_lanes<N>(ellipsoids_[j], p.px, p.py, p.pz, l.tx, l.ty, l.tz);
-        Bits blocked = 0, unsure = 0;
-        RT_VECTOR_LOOP
-        for (int k = 0; k < N; ++k) {
-            blocked |= answer.blocked[k] != 0 ? kLane[k] : 0;
-            unsure |= answer.unsure[k] != 0 ? kLane[k] : 0;
-        }
-        blocked &= lanes, unsure &= lanes;
+        const PrefilterAnswer answer =
+            prefilter_shadow_lanes<N>(ellipsoids_[j], p.px, p.py, p.pz, l.tx, l.ty, l.tz);
+        Bits blocked = answer.blocked & lanes, unsure = answer.unsure & lanes;
         for (; unsure != 0; unsure &= unsure - 1) {  // rare: intersect() decides
             const int k = lowest_bit(unsure);
             if (blocks(ellipsoids_[j], V{p.px[k], p.py[k], p.pz[k]}, V{l.tx[k], l.ty[k], l.tz[k]}))

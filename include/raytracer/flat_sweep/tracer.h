@@ -9,7 +9,6 @@
 #include <type_traits>
 #include <vector>
 
-#include "raytracer/accel/shadow_prefilter.h"
 #include "raytracer/compiler.h"
 #include "raytracer/flat_sweep/bounding_sphere.h"
 #include "raytracer/flat_sweep/ellipsoid_set.h"

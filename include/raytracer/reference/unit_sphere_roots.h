@@ -2,8 +2,9 @@
 // maps an ellipsoid's ray there). It is one lane's arithmetic, written once and without
 // branches (selects only), so that a scalar call is one lane and a loop calling it over
 // lanes of arrays is vectorised by GCC and Clang with the same IEEE operations in the
-// same order: intersect_mapped() (one lane), intersect_lanes() (N lanes) and EyeRays
-// (a run of columns) get the same bits (the build uses -ffp-contract=off).
+// same order: intersect_mapped() (one lane), intersect_lanes() (N lanes) and
+// merge_eye_row() (a run of eye rays' columns, eye_block.h) get the same bits (the build
+// uses -ffp-contract=off).
 //
 // Scaling. d' is scaled first, e = d' / m with m the power of two at or below
 // max |d'_i| (exact; long double divides instead), so that |e| is in [1, 2 sqrt(3)) and
