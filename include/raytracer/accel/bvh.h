@@ -157,33 +157,10 @@ public:
 
     // closest() with min_t kEyeRayMinT for each eye ray of a block (eye_block.h). The block descends the
     // tree as one slab ray from the camera, nearest first, and tries each ellipsoid whose box it may meet,
-    // until no box ahead can hold a root nearer than every pixel's.
+    // until no box ahead can hold a root nearer than every pixel's; where the camera is beyond some guard,
+    // ray by ray.
     template <int Rows, int Columns>
-    void closest(EyeBlock<Real, Rows, Columns>& block) const {
-        if (items_.empty()) return;
-        C d_lo[3], d_hi[3];
-        block.directions(d_lo, d_hi);
-        const C o[3] = {0, 0, 0};
-        SlabRay<C> ray;
-        if (!make_slab_ray(o, o, d_lo, d_hi, ray)) {  // a direction without a finite inverse
-            for (std::uint32_t i = 0; i < items_.size(); ++i) block.add(items_[i], index_[i]);
-            return;
-        }
-        if (!guarded(o, o)) {  // the camera beyond some guard: ray by ray, each culled where it may be
-            for (int b = 0; b < block.rows(); ++b)
-                for (int c = 0; c < block.columns(); ++c)
-                    block.take(b, c, closest(V{}, block.direction(b, c), kEyeRayMinT));
-            return;
-        }
-        traverse<true, true>(ray, std::numeric_limits<C>::infinity(), [&](Child leaf, C& t1) {
-            for (std::uint32_t i = leaf.first; i < leaf.first + leaf.count; ++i) {
-                const BuildBox<C> box = inflated_box<C>(items_[i]);
-                if (meets_box(ray, box, t1)) block.add(items_[i], index_[i], &box);
-            }
-            if (block.tried()) t1 = C(block.farthest());
-            return false;
-        });
-    }
+    void closest(EyeBlock<Real, Rows, Columns>& block) const;  // bvh_traverse.h
 
     // As BruteForce::occluded(): whether some ellipsoid blocks the shadow ray, trying first the hint
     // `blocker` (a position in leaf order, any value: blocker_hints.h), which becomes the one found. The

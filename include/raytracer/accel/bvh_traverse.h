@@ -1,8 +1,10 @@
 // The descent of the tree of bvh.h: Bvh::traverse(), for one ray and for a bundle's slab
 // ray, which visits the leaves whose boxes the ray may meet (children_met(),
-// slab_rays.h).
+// slab_rays.h); and the eye blocks' query on it, Bvh::closest() for an EyeBlock.
 #pragma once
 
+#include <cstdint>
+#include <limits>
 #include <utility>
 
 #include "raytracer/accel/bvh.h"
@@ -63,6 +65,34 @@ void Bvh<Real, Width>::traverse(const SlabRay<C>& ray, C t1, Leaf leaf) const {
         } while (stack[size].near > t1);
         current = stack[size].child;
     }
+}
+
+template <typename Real, int Width>
+template <int Rows, int Columns>
+void Bvh<Real, Width>::closest(EyeBlock<Real, Rows, Columns>& block) const {
+    if (items_.empty()) return;
+    C d_lo[3], d_hi[3];
+    block.directions(d_lo, d_hi);
+    const C o[3] = {0, 0, 0};
+    SlabRay<C> ray;
+    if (!make_slab_ray(o, o, d_lo, d_hi, ray)) {  // a direction without a finite inverse
+        for (std::uint32_t i = 0; i < items_.size(); ++i) block.add(items_[i], index_[i]);
+        return;
+    }
+    if (!guarded(o, o)) {  // the camera beyond some guard: ray by ray, each culled where it may be
+        for (int b = 0; b < block.rows(); ++b)
+            for (int c = 0; c < block.columns(); ++c)
+                block.take(b, c, closest(V{}, block.direction(b, c), kEyeRayMinT));
+        return;
+    }
+    traverse<true, true>(ray, std::numeric_limits<C>::infinity(), [&](Child leaf, C& t1) {
+        for (std::uint32_t i = leaf.first; i < leaf.first + leaf.count; ++i) {
+            const BuildBox<C> box = inflated_box<C>(items_[i]);
+            if (meets_box(ray, box, t1)) block.add(items_[i], index_[i], &box);
+        }
+        if (block.tried()) t1 = C(block.farthest());
+        return false;
+    });
 }
 
 }  // namespace rt
