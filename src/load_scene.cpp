@@ -11,6 +11,7 @@
 
 #include "raytracer/file_pieces.h"
 #include "raytracer/helper_pool.h"
+#include "raytracer/large_pages.h"
 #include "raytracer/parser.h"
 #include "raytracer/scene_error.h"
 
@@ -52,6 +53,7 @@ Scene load_scene(const std::string& path) {
     std::unique_ptr<char[]> bytes;
     if (kReadsInPieces && !ec && size >= kReadInPiecesBytes && size <= kMaxSceneFileBytes && threads > 1) {
         bytes.reset(new char[static_cast<std::size_t>(size)]);
+        advise_large_pages(bytes.get(), static_cast<std::size_t>(size));
         // On failure the stream read below starts where the handle was: at the start.
         if (!read_in_pieces(in.get(), static_cast<std::size_t>(size), threads, bytes.get())) bytes.reset();
     }
@@ -59,7 +61,10 @@ Scene load_scene(const std::string& path) {
     if (!bytes) {
         // Reserved at the file's size where the system tells it (one allocation, not a
         // doubling string's: a 26 MB scene then peaks at 26 MB, not 48).
-        if (!ec && size <= kMaxSceneFileBytes) streamed.reserve(static_cast<std::size_t>(size));
+        if (!ec && size <= kMaxSceneFileBytes) {
+            streamed.reserve(static_cast<std::size_t>(size));
+            advise_large_pages(streamed.data(), streamed.capacity());
+        }
         char buffer[1 << 14];
         for (std::size_t got; (got = std::fread(buffer, 1, sizeof buffer, in.get())) > 0;) {
             streamed.append(buffer, got);

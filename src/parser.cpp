@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "raytracer/helper_pool.h"
+#include "raytracer/large_pages.h"
 #include "raytracer/scene_error.h"
 #include "raytracer/scene_lines.h"
 #include "raytracer/scene_numbers.h"
@@ -256,7 +257,7 @@ struct Piece {
             for (std::size_t at = reserve_for.find("SPHERE"); at != std::string_view::npos;
                  at = reserve_for.find("SPHERE", at + 6))
                 ++spheres;
-            spheres_and_lights.scene.spheres.reserve(spheres);
+            reserve_large(spheres_and_lights.scene.spheres, spheres);
             std::vector<std::string_view> tokens;  // of the current line
             for (std::string_view rest = text; !rest.empty();) {
                 ++lines;

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "raytracer/accel/run_beside.h"
+#include "raytracer/large_pages.h"
 
 namespace rt {
 
@@ -78,7 +79,7 @@ public:
         threads_ = threads;
         nodes_.clear();
         if (items.empty()) return nodes_;
-        nodes_.reserve(2 * items.size());
+        reserve_large(nodes_, 2 * items.size());
         nodes_.emplace_back();
         grow(items, 0, 0, items.size(), 0);
         return std::move(nodes_);
@@ -131,7 +132,7 @@ private:
                      std::size_t middle, std::size_t last, int depth) {
         threads_ = 1;
         BinaryTreeBuilder right;
-        right.nodes_.reserve(2 * (last - middle));
+        reserve_large(right.nodes_, 2 * (last - middle));
         right.nodes_.emplace_back();
         run_beside([&] { right.grow(items, 0, middle, last, depth); },
                    [&] { grow(items, children, first, middle, depth); });
@@ -364,7 +365,7 @@ WideChild collapse(const std::vector<BuildNode<C>>& binary, std::vector<WideNode
     if (binary[0].count > 0) return {binary[0].first, binary[0].count};
     // At most one wide node per inner binary node: reserved (pages that are never
     // written cost no memory), so that the list is not copied as it grows.
-    nodes.reserve(binary.size() / 2);
+    reserve_large(nodes, binary.size() / 2);
     return {detail::collapse_node<Width>(binary, 0, nodes), 0};
 }
 

@@ -1,0 +1,80 @@
+// Large arrays on huge pages (large_pages.h): the advice never changes what an array
+// holds, is harmless on any range, and, where Linux offers transparent huge pages for
+// advised memory, an advised array filled once is backed by them.
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "check.h"
+#include "raytracer/large_pages.h"
+
+namespace {
+
+// The "AnonHugePages" kilobytes of the mapping that holds address, from
+// /proc/self/smaps; -1 where that cannot be read (not Linux).
+long huge_kib_at(const void* address) {
+    std::ifstream smaps("/proc/self/smaps");
+    const auto at = reinterpret_cast<std::uintptr_t>(address);
+    bool inside = false;
+    for (std::string line; std::getline(smaps, line);) {
+        std::uintptr_t first = 0, last = 0;
+        char dash = 0;
+        std::istringstream range(line);
+        if (range >> std::hex >> first >> dash >> last && dash == '-') {
+            inside = first <= at && at < last;
+        } else if (inside && line.rfind("AnonHugePages:", 0) == 0) {
+            return std::stol(line.substr(14));
+        }
+    }
+    return -1;
+}
+
+// Whether the kernel backs memory advised MADV_HUGEPAGE with huge pages
+// ("always" or "madvise" is the mode in brackets).
+bool huge_pages_on_advice() {
+    std::ifstream mode("/sys/kernel/mm/transparent_hugepage/enabled");
+    std::string text;
+    std::getline(mode, text);
+    return text.find("[always]") != std::string::npos || text.find("[madvise]") != std::string::npos;
+}
+
+}  // namespace
+
+TEST(reserve_large_reserves_and_keeps_contents) {
+    std::vector<std::uint64_t> v = {1, 2, 3};
+    rt::reserve_large(v, std::size_t{3} << 20);  // 24 MiB
+    CHECK(v.capacity() >= (std::size_t{3} << 20));
+    CHECK_EQ(v.size(), std::size_t{3});
+    CHECK(v[0] == 1 && v[1] == 2 && v[2] == 3);
+    for (std::uint64_t k = 3; k < (std::uint64_t{3} << 20); ++k) v.push_back(k + 1);
+    std::uint64_t wrong = 0;
+    for (std::size_t k = 0; k < v.size(); ++k) wrong += v[k] != k + 1;
+    CHECK_EQ(wrong, std::uint64_t{0});
+}
+
+TEST(advice_on_any_range_is_harmless) {
+    rt::advise_large_pages(nullptr, 0);
+    rt::advise_large_pages(nullptr, std::size_t{1} << 30);  // unmapped: the advice fails quietly
+    char small[64] = {};
+    rt::advise_large_pages(small + 1, sizeof small - 1);
+    std::vector<char> empty;
+    rt::reserve_large(empty, 0);
+    CHECK(empty.empty());
+    CHECK_EQ(small[0] + small[63], 0);
+}
+
+TEST(an_advised_array_filled_once_is_on_huge_pages) {
+    std::vector<char> v;
+    rt::reserve_large(v, std::size_t{16} << 20);
+    v.assign(v.capacity(), 'x');
+    const long kib = huge_kib_at(v.data() + v.size() / 2);
+    if (kib < 0 || !huge_pages_on_advice()) {
+        std::printf("no transparent huge pages here: not checked\n");
+        return;
+    }
+    CHECK(kib >= 2048);
+}
