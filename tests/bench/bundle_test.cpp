@@ -139,9 +139,14 @@ int eye_pixels_differing(const Crowd<Real>& c, unsigned seed, int blocks, long& 
         const V aim = c.all[g() % c.all.size()].centre;
         // Where the aimed-at centre meets the near plane (anywhere, if behind the camera).
         const bool ahead = aim.z < 0 && g() % 4 != 0;
-        const double x0 = ahead ? double(aim.x * (near_z / aim.z)) : uniform(g, -3, 3);
-        const double y0 = ahead ? double(aim.y * (near_z / aim.z)) : uniform(g, -3, 3);
+        double x0 = ahead ? double(aim.x * (near_z / aim.z)) : uniform(g, -3, 3);
+        double y0 = ahead ? double(aim.y * (near_z / aim.z)) : uniform(g, -3, 3);
         const double step = g() % 2 ? uniform(g, 1e-4, 1e-2) : uniform(g, 0.02, 0.5);
+        // A block across the image's centre lines, whose rays' x (or y) change sign:
+        // Bvh::closest() takes it as one bundle a side.
+        const unsigned across = g() % 4;
+        if (across & 1U) x0 = step * uniform(g, -2, 2);
+        if (across & 2U) y0 = step * uniform(g, 0, 3);
         const int rows = 1 + static_cast<int>(g() % kRows), columns = 1 + static_cast<int>(g() % kColumns);
         Real x[kColumns], y[kRows];
         const int centre = columns / 2;  // the aimed-at column

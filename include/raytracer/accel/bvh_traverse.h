@@ -75,24 +75,42 @@ void Bvh<Real, Width>::closest(EyeBlock<Real, Rows, Columns>& block) const {
     block.directions(d_lo, d_hi);
     const C o[3] = {0, 0, 0};
     SlabRay<C> ray;
-    if (!make_slab_ray(o, o, d_lo, d_hi, ray)) {  // a direction without a finite inverse
+    auto add_all = [&] {  // a direction without a finite inverse
         for (std::uint32_t i = 0; i < items_.size(); ++i) block.add(items_[i], index_[i]);
-        return;
-    }
+    };
+    if (!make_slab_ray(o, o, d_lo, d_hi, ray)) return add_all();
     if (!guarded(o, o)) {  // the camera beyond some guard: ray by ray, each culled where it may be
         for (int b = 0; b < block.rows(); ++b)
             for (int c = 0; c < block.columns(); ++c)
                 block.take(b, c, closest(V{}, block.direction(b, c), kEyeRayMinT));
         return;
     }
-    traverse<true, true>(ray, std::numeric_limits<C>::infinity(), [&](Child leaf, C& t1) {
-        for (std::uint32_t i = leaf.first; i < leaf.first + leaf.count; ++i) {
-            const BuildBox<C> box = inflated_box<C>(items_[i]);
-            if (meets_box(ray, box, t1)) block.add(items_[i], index_[i], &box);
+    auto descend = [&](const SlabRay<C>& part) {
+        const C t1 = block.tried() ? C(block.farthest()) : std::numeric_limits<C>::infinity();
+        traverse<true, true>(part, t1, [&](Child leaf, C& t1) {
+            for (std::uint32_t i = leaf.first; i < leaf.first + leaf.count; ++i) {
+                const BuildBox<C> box = inflated_box<C>(items_[i]);
+                if (meets_box(part, box, t1)) block.add(items_[i], index_[i], &box);
+            }
+            if (block.tried()) t1 = C(block.farthest());
+            return false;
+        });
+    };
+    // A block whose rays' x or y changes sign (on the image's centre lines) goes down as one
+    // bundle a side: a slab ray whose directions run both ways along an axis keeps only one
+    // of its two entry bounds there (make_slab_ray()), so that it would meet every box on
+    // the other side, however far (random 100k: 90-125 us such a block, against 10 us).
+    // An ellipsoid met by two sides is added twice, which changes no pixel's hit.
+    const bool x_both = d_lo[0] < 0 && d_hi[0] >= 0, y_both = d_lo[1] < 0 && d_hi[1] >= 0;
+    if (!x_both && !y_both) return descend(ray);
+    for (const int x_side : {-1, 1})
+        for (const int y_side : {-1, 1}) {
+            if ((!x_both && x_side > 0) || (!y_both && y_side > 0)) continue;
+            C lo[3], hi[3];
+            if (!block.directions(lo, hi, x_both ? x_side : 0, y_both ? y_side : 0)) continue;
+            if (!make_slab_ray(o, o, lo, hi, ray)) return add_all();
+            descend(ray);
         }
-        if (block.tried()) t1 = C(block.farthest());
-        return false;
-    });
 }
 
 }  // namespace rt

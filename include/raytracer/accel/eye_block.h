@@ -93,10 +93,20 @@ public:
         margin_ = columns >= 2 ? 2 * abs(C(x_[1]) - C(x_[0])) : C(0);
     }
 
-    // The directions' range, per axis, for the block's slab ray.
-    void directions(C (&lo)[3], C (&hi)[3]) const {
-        lo[0] = x_lo_, hi[0] = x_hi_, lo[1] = hi[1] = C(y_[0]), lo[2] = hi[2] = C(near_z_);
-        for (int b = 1; b < Rows; ++b) lo[1] = std::min(lo[1], C(y_[b])), hi[1] = std::max(hi[1], C(y_[b]));
+    // The directions' range, per axis, for a slab ray of the block's rays whose x (and y)
+    // is below 0 where x_side (y_side) is -1, not below 0 where it is +1, any where 0;
+    // false where no ray is on those sides.
+    bool directions(C (&lo)[3], C (&hi)[3], int x_side = 0, int y_side = 0) const {
+        auto on_side = [](C v, int side) { return side == 0 || (side < 0) == (v < 0); };
+        lo[0] = lo[1] = std::numeric_limits<C>::infinity(), hi[0] = hi[1] = -lo[0];
+        for (int c = 0; c < Columns; ++c)
+            if (on_side(C(x_[c]), x_side))
+                lo[0] = std::min(lo[0], C(x_[c])), hi[0] = std::max(hi[0], C(x_[c]));
+        for (int b = 0; b < Rows; ++b)
+            if (on_side(C(y_[b]), y_side))
+                lo[1] = std::min(lo[1], C(y_[b])), hi[1] = std::max(hi[1], C(y_[b]));
+        lo[2] = hi[2] = C(near_z_);
+        return lo[0] <= hi[0] && lo[1] <= hi[1];
     }
 
     int rows() const { return rows_; }
