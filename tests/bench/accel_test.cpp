@@ -646,3 +646,58 @@ TEST(scenes_of_extreme_lengths_render_as_the_reference) {
         CHECK(same);
     }
 }
+
+// In float, a direction of 2^-149 against a scale of 1.5 maps to 2^-149 in the unit
+// space: a relative error of 50%, beyond the root solver's bound, so that it reports
+// roots where the exact ray misses the box by far. Such rays must not be culled
+// (make_slab_ray()'s least): 140 of these 40,000 queries differed while they were.
+TEST(bvh_float_directions_below_the_normal_range) {
+    std::vector<rt::Ellipsoid<float>> all;
+    std::mt19937 g(7);
+    for (int i = 0; i < 70; ++i) {
+        rt::SphereSpec e;
+        e.scale = {1.5, 1.5, 1.5}, e.centre = {uniform(g, -20, 20), uniform(g, -20, 20), uniform(g, -20, 20)};
+        all.push_back(rt::make_ellipsoid<float>(e));
+    }
+    const rt::BruteForce<float> plain(all);
+    const rt::Bvh<float> tree(all);
+    CHECK(tree.node_count() > 1);
+    int differing = 0, hits = 0;
+    for (int k = 0; k < 20000; ++k) {
+        const rt::Vec3<float> o{float(uniform(g, -25, 25)), float(uniform(g, -25, 25)),
+                                float(uniform(g, -25, 25))};
+        auto tiny = [&] { return std::ldexp(float(uniform(g, -8, 8)), -149 + int(g() % 3)); };
+        const rt::Vec3<float> d{tiny(), tiny(), tiny()};
+        const rt::NearestHit<float> a = plain.closest(o, d, 0.0001);
+        hits += a.found();
+        differing += !same_hit(tree.closest(o, d, 0.0001), a);
+        std::uint32_t plain_hint = rt::kNoBlocker, tree_hint = rt::kNoBlocker;
+        differing += tree.occluded(o, d, tree_hint) != plain.occluded(o, d, plain_hint);
+    }
+    CHECK(hits > 0);
+    CHECK_EQ(differing, 0);
+}
+
+// The same through a render: a camera plane of 1e-44 (subnormal in float), its eye rays
+// below the normal range in every ellipsoid's unit space.
+TEST(float_render_of_a_subnormal_camera_plane) {
+    const double k = 1e-44;
+    rt::Scene s;
+    s.near_plane = k, s.left = -k, s.right = k, s.bottom = -k, s.top = k;
+    s.columns = 15, s.rows = 15;
+    s.background = {0, 0, 0}, s.ambient = {1, 1, 1};
+    std::mt19937 g(3);
+    for (int i = 0; i < 70; ++i) {
+        rt::SphereSpec e;
+        e.name = "e" + std::to_string(i);
+        e.centre = {uniform(g, -6, 6), uniform(g, -6, 6), uniform(g, -30, -5)};
+        e.scale = {1.5, 1.5, 1.5};
+        e.colour = {i / 70.0, 1, 1}, e.ka = 1;  // a different red for each
+        s.spheres.push_back(e);
+    }
+    rt::LightSpec light;
+    light.name = "light";
+    light.intensity = {1, 1, 1};
+    s.lights.push_back(light);
+    for (unsigned threads : {1U, 2U}) CHECK(renders_as_plain<float>("subnormal camera plane", s, threads));
+}

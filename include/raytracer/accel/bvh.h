@@ -105,7 +105,8 @@ public:
         const bool bundled = lanes != 0 && (lanes & (lanes - 1)) != 0 && !items_.empty() &&
                              (narrow_directions(d_lo, d_hi, lanes) ||
                               items_.size() <= static_cast<std::size_t>(bit_count(lanes))) &&
-                             make_slab_ray(o_lo, o_hi, d_lo, d_hi, ray) && guarded(o_lo, o_hi);
+                             make_slab_ray(o_lo, o_hi, d_lo, d_hi, least_direction_, ray) &&
+                             guarded(o_lo, o_hi);
         if (!bundled) {
             for (unsigned m = lanes; m != 0; m &= m - 1)
                 hits[lowest_bit(m)] = closest(origins[lowest_bit(m)], directions[lowest_bit(m)], min_t);
@@ -146,7 +147,7 @@ public:
         const C o[3] = {C(origin.x), C(origin.y), C(origin.z)};
         SlabRay<C> ray;
         if (items_.empty()) return false;
-        if (!make_slab_ray(o, o, d_lo, d_hi, ray) || !guarded(o, o)) return true;
+        if (!make_slab_ray(o, o, d_lo, d_hi, least_direction_, ray) || !guarded(o, o)) return true;
         bool met = false;
         traverse<false, true>(ray, std::numeric_limits<C>::infinity(), [&](Child leaf, C& t1) {
             for (std::uint32_t i = leaf.first; i < leaf.first + leaf.count && !met; ++i)
@@ -216,7 +217,8 @@ public:
         }
         unsigned blocked = 0;
         SlabRay<C> ray;
-        if (items_.empty() || !make_slab_ray(o_lo, o_hi, d_lo, d_hi, ray) || !guarded(o_lo, o_hi)) {
+        if (items_.empty() || !make_slab_ray(o_lo, o_hi, d_lo, d_hi, least_direction_, ray) ||
+            !guarded(o_lo, o_hi)) {
             for (unsigned m = lanes; m != 0; m &= m - 1)  // beyond the fast case: ray by ray
                 if (occluded(points[lowest_bit(m)], to_light[lowest_bit(m)], blocker,
                              cleared.lane(lowest_bit(m))))
@@ -324,7 +326,7 @@ private:
         const C o[3] = {C(origin.x), C(origin.y), C(origin.z)};
         const C d[3] = {C(direction.x), C(direction.y), C(direction.z)};
         OneRay ray{};
-        ray.sloped = make_slab_ray(o, o, d, d, ray.slab);
+        ray.sloped = make_slab_ray(o, o, d, d, least_direction_, ray.slab);
         ray.guarded = guarded(o, o);
         return ray;
     }
@@ -340,6 +342,7 @@ private:
     Child root_{0, 0};
     BuildBox<C> bounds_{};                 // of every box
     C guard_ = 0;                          // the smallest guard
+    C least_direction_ = 0;                // make_slab_ray()'s least
     std::vector<Ellipsoid<Real>> items_;   // in leaf order
     std::vector<std::uint32_t> index_;     // items_[k] is the ellipsoid index_[k] of the scene
     std::vector<std::uint32_t> position_;  // and ellipsoid i is items_[position_[i]]
@@ -377,7 +380,14 @@ Bvh<Real, Width>::Bvh(std::size_t count, EllipsoidOf ellipsoid_of, unsigned thre
     // The ellipsoids in leaf order beside the collapse.
     auto in_leaf_order = [&] {
         reserve_large(items_, count);
-        for (const std::uint32_t i : index_) items_.push_back(ellipsoid_of(i));
+        C largest = 0;  // scale
+        for (const std::uint32_t i : index_) {
+            items_.push_back(ellipsoid_of(i));
+            const V& s = items_.back().scale;
+            largest = std::max({largest, std::abs(C(s.x)), std::abs(C(s.y)), std::abs(C(s.z))});
+        }
+        // Below it in every component, d / s may be below Real's normal range (twice: a margin).
+        least_direction_ = 2 * C(std::numeric_limits<Real>::min()) * largest;
     };
     auto collapse_tree = [&] { root_ = collapse<Width>(binary, nodes_); };
     both(in_leaf_order, collapse_tree);

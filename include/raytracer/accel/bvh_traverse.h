@@ -78,7 +78,7 @@ void Bvh<Real, Width>::closest(EyeBlock<Real, Rows, Columns>& block) const {
     auto add_all = [&] {  // a direction without a finite inverse
         for (std::uint32_t i = 0; i < items_.size(); ++i) block.add(items_[i], index_[i]);
     };
-    if (!make_slab_ray(o, o, d_lo, d_hi, ray)) return add_all();
+    if (!make_slab_ray(o, o, d_lo, d_hi, least_direction_, ray)) return add_all();
     if (!guarded(o, o)) {  // the camera beyond some guard: ray by ray, each culled where it may be
         for (int b = 0; b < block.rows(); ++b)
             for (int c = 0; c < block.columns(); ++c)
@@ -108,7 +108,7 @@ void Bvh<Real, Width>::closest(EyeBlock<Real, Rows, Columns>& block) const {
             if ((!x_both && x_side > 0) || (!y_both && y_side > 0)) continue;
             C lo[3], hi[3];
             if (!block.directions(lo, hi, x_both ? x_side : 0, y_both ? y_side : 0)) continue;
-            if (!make_slab_ray(o, o, lo, hi, ray)) return add_all();
+            if (!make_slab_ray(o, o, lo, hi, least_direction_, ray)) return add_all();
             descend(ray);
         }
 }

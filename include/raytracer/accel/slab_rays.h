@@ -39,14 +39,23 @@ struct SlabRay {
     C hi_from[3], hi_inv[3];  // for its high planes: o_lo, 1 / d_lo
 };
 
-// The slab ray of a bundle's edges, or false where a direction has a component
-// without a finite inverse (a subnormal scene; such a ray is tried against every
-// ellipsoid: an infinite inverse makes a slab's t infinite where it is finite).
+// The slab ray of a bundle's edges, or false where boxes may not cull its rays, which
+// are then tried against every ellipsoid:
+// - a direction has a component without a finite inverse (a subnormal scene: an
+//   infinite inverse makes a slab's t infinite where it is finite);
+// - some direction may have every component below least in size (Bvh's
+//   least_direction_): mapped into an ellipsoid's unit space, d / s may then lie wholly
+//   below the normal range, where its components lose the relative accuracy that the
+//   root solver's error bound assumes (unit_sphere_roots.h), and the roots it reports
+//   may lie anywhere (float: a direction of 2^-149 and a scale of 1.5).
 template <typename C>
 RT_ALWAYS_INLINE bool make_slab_ray(const C (&o_lo)[3], const C (&o_hi)[3], const C (&d_lo)[3],
-                                    const C (&d_hi)[3], SlabRay<C>& ray) {
+                                    const C (&d_hi)[3], C least, SlabRay<C>& ray) {
     constexpr C kInf = std::numeric_limits<C>::infinity();
+    bool long_enough = false;  // some axis where every direction's component is >= least
     for (int a = 0; a < 3; ++a) {
+        const bool straddles = d_lo[a] <= 0 && d_hi[a] >= 0;
+        long_enough = long_enough || (!straddles && std::min(std::abs(d_lo[a]), std::abs(d_hi[a])) >= least);
         // -0 as +0, so that a zero's sign follows the cases below.
         ray.lo_from[a] = o_hi[a], ray.lo_inv[a] = 1 / (d_hi[a] == 0 ? C(0) : d_hi[a]);
         ray.hi_from[a] = o_lo[a], ray.hi_inv[a] = 1 / (d_lo[a] == 0 ? C(0) : d_lo[a]);
@@ -56,7 +65,7 @@ RT_ALWAYS_INLINE bool make_slab_ray(const C (&o_lo)[3], const C (&o_hi)[3], cons
         if (d_lo[a] < 0 && d_hi[a] >= 0) ray.hi_from[a] = -kInf, ray.hi_inv[a] = 1;  // q = +inf
         if (d_lo[a] >= 0 && d_hi[a] < 0) ray.lo_from[a] = kInf, ray.lo_inv[a] = 1;   // p = -inf
     }
-    return true;
+    return long_enough;
 }
 
 // [enter, leave] clipped to one axis's slab, given its p and q (SlabRay). A slab's end is
