@@ -95,7 +95,7 @@ public:
 
     // The directions' range, per axis, for a slab ray of the block's rays whose x (and y)
     // is below 0 where x_side (y_side) is -1, not below 0 where it is +1, any where 0;
-    // false where no ray is on those sides.
+    // false where no ray is on those sides. A NaN is left out (its ray has no visible root).
     bool directions(C (&lo)[3], C (&hi)[3], int x_side = 0, int y_side = 0) const {
         auto on_side = [](C v, int side) { return side == 0 || (side < 0) == (v < 0); };
         lo[0] = lo[1] = std::numeric_limits<C>::infinity(), hi[0] = hi[1] = -lo[0];

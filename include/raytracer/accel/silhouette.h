@@ -15,6 +15,7 @@
 // the camera's plane or lies far away) no row is ruled out.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 #include "raytracer/reference/ellipsoid.h"
@@ -43,12 +44,15 @@ public:
     // Whether the eye rays of the row at height y with x in [x_lo, x_hi] may meet the
     // ellipsoid, margin (two pixels' spacing) allowed on both sides. The quadratic is
     // taken in u = x / s'.x, whose terms are the unit space's (no square of a scale
-    // over- or underflows); where a term is not finite, no row is ruled out.
+    // over- or underflows); where a term is not finite, or the row's direction is below
+    // kLeastSquaredDirection there, no row is ruled out.
     bool row_may_meet(C y, C x_lo, C x_hi, C margin) const {
         if (!usable_) return true;
+        using std::abs;
         using std::isfinite;
         using std::sqrt;
         const C dy = y * ky_, dz = near_z_ * kz_;  // d'.y, d'.z
+        if (!(std::max(abs(dy), abs(dz)) >= C(kLeastSquaredDirection))) return true;
         const C beta0 = oy_ * dy + oz_ * dz;
         const C b = ox_ * beta0;
         const C k = beta0 * beta0 - (dy * dy + dz * dz) * gamma_;

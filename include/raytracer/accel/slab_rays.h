@@ -43,11 +43,13 @@ struct SlabRay {
 // are then tried against every ellipsoid:
 // - a direction has a component without a finite inverse (a subnormal scene: an
 //   infinite inverse makes a slab's t infinite where it is finite);
-// - some direction may have every component below least in size (Bvh's
-//   least_direction_): mapped into an ellipsoid's unit space, d / s may then lie wholly
-//   below the normal range, where its components lose the relative accuracy that the
-//   root solver's error bound assumes (unit_sphere_roots.h), and the roots it reports
-//   may lie anywhere (float: a direction of 2^-149 and a scale of 1.5).
+// - some direction between the edges' may have every component below least in size
+//   (Bvh's least_direction_; the edges of rays from one origin bound their directions,
+//   those of a shadow bundle converge on its light): mapped into an ellipsoid's unit
+//   space, d / s may then lie wholly below the normal range, where its components lose
+//   the relative accuracy that the root solver's error bound assumes
+//   (unit_sphere_roots.h), and the roots it reports may lie anywhere (float: a
+//   direction of 2^-149 and a scale of 1.5).
 template <typename C>
 RT_ALWAYS_INLINE bool make_slab_ray(const C (&o_lo)[3], const C (&o_hi)[3], const C (&d_lo)[3],
                                     const C (&d_hi)[3], C least, SlabRay<C>& ray) {

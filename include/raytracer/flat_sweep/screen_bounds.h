@@ -127,8 +127,12 @@ public:
     bool narrow(std::size_t i, C y, int& first, int& last) const {
         const Span& sp = spans_[i];
         if (!sp.exact) return first <= last;
+        using std::abs;
         using std::floor;
         using std::sqrt;
+        // The row's direction in the unit space, whose terms are squared below.
+        if (!(std::max(abs(sp.ky * y), abs(sp.kz * near_)) >= C(kLeastSquaredDirection)))
+            return first <= last;
         const C beta1 = sp.ox * sp.kx, beta0 = sp.oy * sp.ky * y - sp.oz * sp.kz * near_;
         const C alpha0 = sp.ky * sp.ky * y * y + sp.kz * sp.kz * near_ * near_;
         const C b = beta1 * beta0, k = beta0 * beta0 - alpha0 * sp.gamma;

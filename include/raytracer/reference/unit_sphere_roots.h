@@ -184,6 +184,12 @@ RT_ALWAYS_INLINE LaneRoots<Real> unit_sphere_roots(Real ox, Real oy, Real oz, Re
 // boxes) therefore rules out only tests that would find no usable root, for rays from
 // within that reach; beyond it nothing is culled.
 inline constexpr double kCullingGap = 1e-3;
+// The silhouette tests (silhouette.h, screen_bounds.h) square an eye ray's direction in
+// an ellipsoid's unit space: from this size on, its squares and their products with
+// terms of |o'| <= 1000 stay far above the end of double's normal range (1e-308); below
+// it (a window 1e100 times smaller than the ellipsoid) they may underflow to 0, and no
+// row is ruled out.
+inline constexpr double kLeastSquaredDirection = 1e-100;
 template <typename Real>
 constexpr double culling_reach() {
     return std::numeric_limits<Real>::digits > 30 ? 1e6 : 1e2;
