@@ -387,6 +387,25 @@ std::vector<rt::Ellipsoid<double>> row_of_spheres(double s, int n) {
     return all;
 }
 
+// 70 spheres of this scale at centre_of(0..69), each a different red seen in ambient
+// light only (so that a pixel names the sphere it sees), and one light; black behind.
+template <typename CentreOf>
+void add_ambient_spheres(rt::Scene& s, double scale, CentreOf centre_of) {
+    s.background = {0, 0, 0}, s.ambient = {1, 1, 1};
+    for (int i = 0; i < 70; ++i) {
+        rt::SphereSpec e;
+        e.name = "e" + std::to_string(i);
+        e.centre = centre_of(i);
+        e.scale = {scale, scale, scale};
+        e.colour = {i / 70.0, 1, 1}, e.ka = 1;
+        s.spheres.push_back(e);
+    }
+    rt::LightSpec light;
+    light.name = "light";
+    light.intensity = {1, 1, 1};
+    s.lights.push_back(light);
+}
+
 }  // namespace
 
 // A scene of subnormal numbers (the parser takes them: 4e-320 is a scale like any
@@ -397,20 +416,10 @@ rt::Scene subnormal_scene() {
     rt::Scene s;
     s.near_plane = k, s.left = -k, s.right = k, s.bottom = -k, s.top = k;
     s.columns = 9, s.rows = 9;
-    s.background = {0, 0, 0}, s.ambient = {1, 1, 1};
-    for (int i = 0; i < 70; ++i) {
-        rt::SphereSpec e;
-        e.name = "e" + std::to_string(i);
+    add_ambient_spheres(s, k * 0.3, [k](int i) {
         const int row = i / 7 % 5, depth = i / 35;  // whole numbers: 7 columns, 5 rows, 2 layers
-        e.centre = {k * ((i % 7) - 3) * 0.5, k * (row - 2) * 0.5, -k * (3 + depth)};
-        e.scale = {k * 0.3, k * 0.3, k * 0.3};
-        e.colour = {i / 70.0, 1, 1}, e.ka = 1;  // a different red for each
-        s.spheres.push_back(e);
-    }
-    rt::LightSpec light;
-    light.name = "light";
-    light.intensity = {1, 1, 1};
-    s.lights.push_back(light);
+        return rt::Vec3<double>{k * ((i % 7) - 3) * 0.5, k * (row - 2) * 0.5, -k * (3 + depth)};
+    });
     return s;
 }
 
@@ -685,20 +694,10 @@ TEST(float_render_of_a_subnormal_camera_plane) {
     rt::Scene s;
     s.near_plane = k, s.left = -k, s.right = k, s.bottom = -k, s.top = k;
     s.columns = 15, s.rows = 15;
-    s.background = {0, 0, 0}, s.ambient = {1, 1, 1};
     std::mt19937 g(3);
-    for (int i = 0; i < 70; ++i) {
-        rt::SphereSpec e;
-        e.name = "e" + std::to_string(i);
-        e.centre = {uniform(g, -6, 6), uniform(g, -6, 6), uniform(g, -30, -5)};
-        e.scale = {1.5, 1.5, 1.5};
-        e.colour = {i / 70.0, 1, 1}, e.ka = 1;  // a different red for each
-        s.spheres.push_back(e);
-    }
-    rt::LightSpec light;
-    light.name = "light";
-    light.intensity = {1, 1, 1};
-    s.lights.push_back(light);
+    add_ambient_spheres(s, 1.5, [&g](int) {
+        return rt::Vec3<double>{uniform(g, -6, 6), uniform(g, -6, 6), uniform(g, -30, -5)};
+    });
     for (unsigned threads : {1U, 2U}) CHECK(renders_as_plain<float>("subnormal camera plane", s, threads));
 }
 
