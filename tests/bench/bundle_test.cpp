@@ -321,6 +321,21 @@ TEST(bvh_shadow_bundles_match_brute_force) {
     CHECK(cleared > 10000);
 }
 
+// A shadow bundle's edges converge on its light: on an axis where the light lies between
+// the points' planes, d_lo > 0 > d_hi, and a lane's component there may be 0. With the
+// light inside the points' box on every axis, no axis keeps the lanes' directions away
+// from 0, and boxes must not cull them (make_slab_ray()'s least): the query then tries
+// every ellipsoid, as where a direction may map below the normal range.
+TEST(slab_rays_of_converging_edges_around_the_light_do_not_cull) {
+    using C = double;
+    const C o_lo[3] = {-1, -1, -1}, o_hi[3] = {1, 1, 1}, least = 1e-300;
+    rt::SlabRay<C> ray;
+    const C around_lo[3] = {1, 1, 1}, around_hi[3] = {-1, -1, -1};  // the light at 0
+    CHECK(!rt::make_slab_ray(o_lo, o_hi, around_lo, around_hi, least, ray));
+    const C beyond_lo[3] = {3, 1, 1}, beyond_hi[3] = {1, -1, -1};  // at x = 2: every x >= 1
+    CHECK(rt::make_slab_ray(o_lo, o_hi, beyond_lo, beyond_hi, least, ray));
+}
+
 // Each (ellipsoid, light) pair keeps its own hint while the pairs fit the table; past
 // kMaxSlots pairs share slots, and a hint read is one some pair stored, or none.
 TEST(blocker_hints_keep_a_hint_per_pair) {
