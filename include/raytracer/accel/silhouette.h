@@ -27,7 +27,7 @@ template <typename C>
 class Silhouette {
 public:
     template <typename Real>
-    Silhouette(const Ellipsoid<Real>& e, C near_z) : near_z_(near_z) {
+    Silhouette(const Ellipsoid<Real>& e, C near_z) {
         using std::abs;
         const C grow = 1 + C(kCullingGap);
         const C sx = abs(C(e.scale.x)) * grow, sy = abs(C(e.scale.y)) * grow, sz = abs(C(e.scale.z)) * grow;
@@ -36,6 +36,8 @@ public:
         const C o2 = ox_ * ox_ + oy_ * oy_ + oz_ * oz_;
         gamma_ = o2 - 1;
         a_ = 1 - oy_ * oy_ - oz_ * oz_;
+        dz_ = near_z * kz_;  // every row's d'.z
+        z_long_ = abs(dz_) >= C(kLeastSquaredDirection);
         using std::isfinite;
         usable_ = C(e.centre.z) + sz < 0 && o2 <= C(1e6) && a_ < 0 && isfinite(kx_) && isfinite(ky_) &&
                   isfinite(kz_);
@@ -45,17 +47,17 @@ public:
     // ellipsoid, margin (two pixels' spacing) allowed on both sides. The quadratic is
     // taken in u = x / s'.x, whose terms are the unit space's (no square of a scale
     // over- or underflows); where a term is not finite, or the row's direction is below
-    // kLeastSquaredDirection there, no row is ruled out.
+    // kLeastSquaredDirection there (both d'.y and d'.z), no row is ruled out.
     bool row_may_meet(C y, C x_lo, C x_hi, C margin) const {
         if (!usable_) return true;
         using std::abs;
         using std::isfinite;
         using std::sqrt;
-        const C dy = y * ky_, dz = near_z_ * kz_;  // d'.y, d'.z
-        if (!(std::max(abs(dy), abs(dz)) >= C(kLeastSquaredDirection))) return true;
-        const C beta0 = oy_ * dy + oz_ * dz;
+        const C dy = y * ky_;  // d'.y
+        if (!z_long_ && !(abs(dy) >= C(kLeastSquaredDirection))) return true;
+        const C beta0 = oy_ * dy + oz_ * dz_;
         const C b = ox_ * beta0;
-        const C k = beta0 * beta0 - (dy * dy + dz * dz) * gamma_;
+        const C k = beta0 * beta0 - (dy * dy + dz_ * dz_) * gamma_;
         const C disc = b * b - a_ * k;
         if (!isfinite(disc)) return true;
         if (!(disc >= 0)) return false;
@@ -68,8 +70,8 @@ public:
     }
 
 private:
-    C near_z_, ox_, oy_, oz_, kx_, ky_, kz_, gamma_, a_;
-    bool usable_;
+    C ox_, oy_, oz_, kx_, ky_, kz_, gamma_, a_, dz_;
+    bool usable_, z_long_;
 };
 
 }  // namespace rt
