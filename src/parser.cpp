@@ -24,9 +24,11 @@ namespace rt {
 namespace {
 
 enum class Field { Name, Number, Count };
+enum class Keyword { Near, Left, Right, Bottom, Top, Res, Sphere, Light, Back, Ambient, Output };
 
 struct Statement {
-    const char* keyword;
+    Keyword kind;
+    std::string_view keyword;
     bool required_once;  // false: SPHERE and LIGHT, any number of times
     std::vector<const char*> field_names;
     std::vector<Field> field_kinds;
@@ -34,32 +36,35 @@ struct Statement {
 
 const std::vector<Statement>& statements() {
     using F = Field;
+    using K = Keyword;
     static const std::vector<Statement> table = {
-        {"NEAR", true, {"n"}, {F::Number}},
-        {"LEFT", true, {"l"}, {F::Number}},
-        {"RIGHT", true, {"r"}, {F::Number}},
-        {"BOTTOM", true, {"b"}, {F::Number}},
-        {"TOP", true, {"t"}, {F::Number}},
-        {"RES", true, {"x", "y"}, {F::Count, F::Count}},
-        {"SPHERE",
+        {K::Near, "NEAR", true, {"n"}, {F::Number}},
+        {K::Left, "LEFT", true, {"l"}, {F::Number}},
+        {K::Right, "RIGHT", true, {"r"}, {F::Number}},
+        {K::Bottom, "BOTTOM", true, {"b"}, {F::Number}},
+        {K::Top, "TOP", true, {"t"}, {F::Number}},
+        {K::Res, "RES", true, {"x", "y"}, {F::Count, F::Count}},
+        {K::Sphere,
+         "SPHERE",
          false,
          {"name", "pos x", "pos y", "pos z", "scl x", "scl y", "scl z", "r", "g", "b", "Ka", "Kd", "Ks", "Kr",
           "n"},
          {F::Name, F::Number, F::Number, F::Number, F::Number, F::Number, F::Number, F::Number, F::Number,
           F::Number, F::Number, F::Number, F::Number, F::Number, F::Number}},
-        {"LIGHT",
+        {K::Light,
+         "LIGHT",
          false,
          {"name", "pos x", "pos y", "pos z", "Ir", "Ig", "Ib"},
          {F::Name, F::Number, F::Number, F::Number, F::Number, F::Number, F::Number}},
-        {"BACK", true, {"r", "g", "b"}, {F::Number, F::Number, F::Number}},
-        {"AMBIENT", true, {"Ir", "Ig", "Ib"}, {F::Number, F::Number, F::Number}},
-        {"OUTPUT", true, {"name"}, {F::Name}},
+        {K::Back, "BACK", true, {"r", "g", "b"}, {F::Number, F::Number, F::Number}},
+        {K::Ambient, "AMBIENT", true, {"Ir", "Ig", "Ib"}, {F::Number, F::Number, F::Number}},
+        {K::Output, "OUTPUT", true, {"name"}, {F::Name}},
     };
     return table;
 }
 
 std::string usage_of(const Statement& s) {
-    std::string text = s.keyword;
+    std::string text(s.keyword);
     for (const char* name : s.field_names) text += std::string(" <") + name + ">";
     return text;
 }
@@ -84,12 +89,13 @@ const Statement& statement_of(std::string_view keyword, int line) {
     fail(line, "unknown keyword " + shown(keyword) + ", expected one of " + keyword_list());
 }
 
-// The fields of one statement, converted and checked for form (not yet for meaning).
+// The fields of one statement, converted and checked for form (not yet for meaning),
+// each kind in the order given: no allocation per line.
 struct Fields {
-    std::vector<std::string_view> names;
-    std::vector<double> numbers;
-    std::vector<long long> counts;
-    std::vector<std::string_view> raw;  // every field as written, for messages
+    static constexpr std::size_t kMax = 15;   // SPHERE's
+    std::string_view names[kMax], raw[kMax];  // raw: every field as written, for messages
+    double numbers[kMax] = {};
+    long long counts[kMax] = {};
 };
 
 // Applies statements to a scene, checking each, and the scene once it is complete.
@@ -109,55 +115,56 @@ public:
         const std::size_t index = static_cast<std::size_t>(&found - statements().data());
         if (found.required_once) {
             if (first_line_[index] != 0) {
-                fail(line, std::string("a second ") + found.keyword + " (the first is on line " +
+                fail(line, "a second " + std::string(found.keyword) + " (the first is on line " +
                                std::to_string(first_line_[index]) + "), expected exactly one");
             }
             first_line_[index] = line;
         }
 
-        Fields& fields = fields_;  // reused: no allocation per line
-        fields.names.clear(), fields.numbers.clear(), fields.counts.clear(), fields.raw.clear();
+        Fields& f = fields_;  // reused: its arrays are not set up a line
+        std::size_t names = 0, numbers = 0, counts = 0;
         for (std::size_t i = 0; i < wanted; ++i) {
             const std::string_view token = tokens[i + 1];
-            fields.raw.push_back(token);
+            f.raw[i] = token;
             auto what = [&] {  // only for a message: most lines have none
                 return std::string(found.keyword) + " <" + found.field_names[i] + "> is " + shown(token);
             };
             switch (found.field_kinds[i]) {
                 case Field::Name:
-                    fields.names.push_back(token);
+                    f.names[names++] = token;
                     break;
                 case Field::Number:
                     if (auto value = to_double(token))
-                        fields.numbers.push_back(*value);
+                        f.numbers[numbers++] = *value;
                     else
                         fail(line, what() + ", expected a finite decimal number");
                     break;
                 case Field::Count:
                     if (auto value = to_integer(token); value && *value > 0)
-                        fields.counts.push_back(*value);
+                        f.counts[counts++] = *value;
                     else
                         fail(line, what() + ", expected a positive whole number");
                     break;
             }
         }
-        apply(found.keyword, fields, line);
+        apply(found.kind, f, line);
     }
 
-    void apply(std::string_view keyword, const Fields& f, int line) {
-        const std::vector<double>& v = f.numbers;
-        if (keyword == "NEAR") {
+    void apply(Keyword kind, const Fields& f, int line) {
+        using K = Keyword;
+        const double* v = f.numbers;
+        if (kind == K::Near) {
             if (!(v[0] > 0)) fail(line, "NEAR is " + format(v[0]) + ", expected a distance greater than 0");
             scene.near_plane = v[0];
-        } else if (keyword == "LEFT") {
+        } else if (kind == K::Left) {
             scene.left = v[0];
-        } else if (keyword == "RIGHT") {
+        } else if (kind == K::Right) {
             scene.right = v[0];
-        } else if (keyword == "BOTTOM") {
+        } else if (kind == K::Bottom) {
             scene.bottom = v[0];
-        } else if (keyword == "TOP") {
+        } else if (kind == K::Top) {
             scene.top = v[0];
-        } else if (keyword == "RES") {
+        } else if (kind == K::Res) {
             const long long columns = f.counts[0], rows = f.counts[1];
             if (columns > kMaxImageSide || rows > kMaxImageSide || columns * rows > kMaxImagePixels) {
                 fail(line, "RES " + std::to_string(columns) + " " + std::to_string(rows) +
@@ -166,32 +173,25 @@ public:
             }
             scene.columns = static_cast<int>(columns);
             scene.rows = static_cast<int>(rows);
-        } else if (keyword == "SPHERE") {
-            SphereSpec s;
-            s.name = std::string(f.names[0]);
-            s.centre = {v[0], v[1], v[2]};
-            s.scale = {v[3], v[4], v[5]};
-            s.colour = {v[6], v[7], v[8]};
-            s.ka = v[9];
-            s.kd = v[10];
-            s.ks = v[11];
-            s.kr = v[12];
-            s.shininess = v[13];
-            s.line = line;
+        } else if (kind == K::Sphere) {
             for (std::size_t axis = 0; axis < 3; ++axis) {
                 if (v[3 + axis] == 0) {
-                    fail(line, "SPHERE " + shown(s.name) + " <scl " + "xyz"[axis] + "> is " +
+                    fail(line, "SPHERE " + shown(f.names[0]) + " <scl " + "xyz"[axis] + "> is " +
                                    shown(f.raw[4 + axis]) + ", expected a non-zero scale");
                 }
             }
-            scene.spheres.push_back(std::move(s));
-        } else if (keyword == "LIGHT") {
+            SphereSpec& s = scene.spheres.emplace_back();
+            s.name = f.names[0];
+            s.centre = {v[0], v[1], v[2]}, s.scale = {v[3], v[4], v[5]}, s.colour = {v[6], v[7], v[8]};
+            s.ka = v[9], s.kd = v[10], s.ks = v[11], s.kr = v[12], s.shininess = v[13];
+            s.line = line;
+        } else if (kind == K::Light) {
             scene.lights.push_back({std::string(f.names[0]), {v[0], v[1], v[2]}, {v[3], v[4], v[5]}, line});
-        } else if (keyword == "BACK") {
+        } else if (kind == K::Back) {
             scene.background = {v[0], v[1], v[2]};
-        } else if (keyword == "AMBIENT") {
+        } else if (kind == K::Ambient) {
             scene.ambient = {v[0], v[1], v[2]};
-        } else if (keyword == "OUTPUT") {
+        } else if (kind == K::Output) {
             scene.output = std::string(f.names[0]);
             scene.output_line = line;
         }
@@ -212,7 +212,7 @@ public:
     void check_complete() const {
         for (std::size_t i = 0; i < statements().size(); ++i) {
             if (statements()[i].required_once && first_line_[i] == 0) {
-                fail(0, std::string("no ") + statements()[i].keyword +
+                fail(0, "no " + std::string(statements()[i].keyword) +
                             " line, expected exactly one: " + usage_of(statements()[i]));
             }
         }

@@ -2,7 +2,6 @@
 #include "raytracer/scene_numbers.h"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <string>
@@ -38,24 +37,13 @@ bool is_decimal_number(std::string_view s) {
 
 }  // namespace
 
-std::optional<double> to_double(std::string_view token) {
-    // from_chars reads exactly the decimal form (sign, digits, point, exponent) but for
-    // a leading '+', which it refuses, and "inf" and "nan", which it takes; it rounds
-    // correctly, as strtod does, and needs no copy nor locale (the parser's hottest call
-    // on large scenes). So the token is first checked to start as a number does.
-    std::string_view body = token;
-    const bool negative = !body.empty() && body[0] == '-';
-    if (!body.empty() && (body[0] == '+' || body[0] == '-')) body.remove_prefix(1);
-    if (body.empty() || !(is_digit(body[0]) || body[0] == '.')) return std::nullopt;
-    double value = 0;
-    const auto [end, error] = std::from_chars(body.data(), body.data() + body.size(), value);
-    if (error == std::errc() && end == body.data() + body.size()) return negative ? -value : value;
-    // Out of range: strtod decides, as it always did (1e999 overflows and is refused;
-    // 1e-999 is 0 and 4e-320 a denormal, both taken). The program never calls
-    // setlocale, so strtod reads '.' as the decimal point.
-    if (error != std::errc::result_out_of_range || !is_decimal_number(token)) return std::nullopt;
+std::optional<double> out_of_range_decimal(std::string_view token) {
+    // strtod decides, as it always did (1e999 overflows and is refused; 1e-999 is 0 and
+    // 4e-320 a denormal, both taken). The program never calls setlocale, so strtod
+    // reads '.' as the decimal point.
+    if (!is_decimal_number(token)) return std::nullopt;
     const std::string text(token);
-    value = std::strtod(text.c_str(), nullptr);
+    const double value = std::strtod(text.c_str(), nullptr);
     if (!std::isfinite(value)) return std::nullopt;
     return value;
 }

@@ -9,6 +9,8 @@
 #include <string_view>
 #include <vector>
 
+#include "raytracer/bit_scan.h"
+
 namespace rt {
 
 namespace detail {
@@ -28,18 +30,25 @@ struct ByteKinds {
 inline constexpr ByteKinds kByteKinds;
 inline unsigned char kind_of(char c) { return kByteKinds.of[static_cast<unsigned char>(c)]; }
 
-// From i, past the words of eight bytes that are all part of a token. Every byte that
-// can end a token (a separator, a line end, NUL) is below 0x21, and a word holds a byte
-// below 0x21 exactly when (w - 0x21...21) & ~w & 0x80...80 is not zero (S. E. Anderson,
-// "Bit Twiddling Hacks": "determine if a word has a byte less than n", n <= 128, in
-// either byte order). The control bytes 0x01-0x1F that tokens may hold stop the words
-// too; split_line()'s look-up a byte goes on past them. A number's token then costs a
-// few words rather than a table look-up a byte.
+// From i, to the first byte below 0x21 (or the end): whole words of eight bytes at a
+// time. Every byte that can end a token (a separator, a line end, NUL) is below 0x21,
+// and a word holds a byte below 0x21 exactly when (w - 0x21...21) & ~w & 0x80...80 is
+// not zero (S. E. Anderson, "Bit Twiddling Hacks": "determine if a word has a byte less
+// than n", n <= 128); its lowest set bit marks the first such byte of the word read
+// little-endian (a borrow only marks bytes above a true one). The control bytes
+// 0x01-0x1F that tokens may hold stop the words too; split_line()'s look-up a byte
+// goes on past them. A number's token then costs a few words rather than a look-up a
+// byte.
 inline std::size_t past_token_words(std::string_view text, std::size_t i) {
     constexpr std::uint64_t kOnes = 0x0101010101010101U, kHighs = 0x8080808080808080U;
+    const std::uint64_t one = 1;
+    unsigned char first_byte = 0;
+    std::memcpy(&first_byte, &one, 1);
+    const bool little_endian = first_byte == 1;  // a constant to the compiler
     for (std::uint64_t w; i + 8 <= text.size(); i += 8) {
         std::memcpy(&w, text.data() + i, 8);
-        if (((w - 0x21 * kOnes) & ~w & kHighs) != 0) break;
+        const std::uint64_t below = (w - 0x21 * kOnes) & ~w & kHighs;
+        if (below != 0) return little_endian ? i + static_cast<std::size_t>(lowest_bit(below) / 8) : i;
     }
     return i;
 }
