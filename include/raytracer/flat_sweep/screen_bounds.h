@@ -17,8 +17,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <utility>
 #include <vector>
 
+#include "raytracer/accel/silhouette.h"
 #include "raytracer/flat_sweep/bounding_sphere.h"
 #include "raytracer/reference/unit_sphere_roots.h"
 #include "raytracer/scene.h"
@@ -89,72 +91,43 @@ std::vector<PixelRect> screen_bounds(const Scene& scene, const std::vector<Bound
 }
 
 // Tighter than the rectangle: within one row, the columns whose eye rays may meet an
-// ellipsoid. The eye rays of row r are d(x) = (x, y_r, -near); mapped into the unit
-// space of the ellipsoid inflated by kCullingGap (so o' = -C/s', d' = d/s'), the ray meets
-// it where disc(x) = (o'.d')^2 - |d'|^2 (|o'|^2 - 1) >= 0, a quadratic A x^2 + 2 B x + K
-// in x whose roots bound the columns (two columns of margin, as for the rectangle).
-// Only for an ellipsoid wholly in front of the eye (then A < 0 and the set is one
-// interval) and not far away (|o'| <= 1000, so rounding stays near 1e-10 against the
-// inflation's 1e-3); otherwise the rectangle's columns stand.
+// ellipsoid: its silhouette's span of the row (silhouette.h), two columns of margin on
+// each side, as for the rectangle. Only for an ellipsoid whose guard holds the camera
+// (usable); otherwise the rectangle's columns stand.
 template <typename C>
 class RowSpans {
 public:
     RowSpans() = default;
 
-    RowSpans(const Scene& scene, const std::vector<Vec3<C>>& centres, const std::vector<Vec3<C>>& scales,
-             const std::vector<bool>& usable)
-        : near_(C(scene.near_plane)),
+    template <typename Real>
+    RowSpans(const Scene& scene, const std::vector<Ellipsoid<Real>>& ellipsoids, std::vector<bool> usable)
+        : usable_(std::move(usable)),
           left_(C(scene.left)),
           column_scale_(C(scene.columns) / (C(scene.right) - C(scene.left))),
           columns_(scene.columns) {
-        for (std::size_t i = 0; i < centres.size(); ++i) {
-            using std::abs;
-            Span sp{};
-            const C sx = abs(scales[i].x) * (1 + kCullingGap), sy = abs(scales[i].y) * (1 + kCullingGap);
-            const C sz = abs(scales[i].z) * (1 + kCullingGap);
-            sp.ox = -centres[i].x / sx, sp.oy = -centres[i].y / sy, sp.oz = -centres[i].z / sz;
-            sp.kx = 1 / sx, sp.ky = 1 / sy, sp.kz = 1 / sz;
-            const C o2 = sp.ox * sp.ox + sp.oy * sp.oy + sp.oz * sp.oz;
-            sp.gamma = o2 - 1;
-            sp.a = sp.kx * sp.kx * (1 - sp.oy * sp.oy - sp.oz * sp.oz);
-            sp.exact = usable[i] && centres[i].z + sz < 0 && o2 <= C(1e6) && sp.a < 0;
-            spans_.push_back(sp);
-        }
+        for (const Ellipsoid<Real>& e : ellipsoids) silhouettes_.emplace_back(e, -C(scene.near_plane));
     }
 
     // Narrows [first, last] to the columns of the row at height y that may see
     // ellipsoid i; false when none may.
     bool narrow(std::size_t i, C y, int& first, int& last) const {
-        const Span& sp = spans_[i];
-        if (!sp.exact) return first <= last;
-        using std::abs;
-        using std::floor;
-        using std::sqrt;
-        // The row's direction in the unit space, whose terms are squared below.
-        if (!(std::max(abs(sp.ky * y), abs(sp.kz * near_)) >= C(kLeastSquaredDirection)))
-            return first <= last;
-        const C beta1 = sp.ox * sp.kx, beta0 = sp.oy * sp.ky * y - sp.oz * sp.kz * near_;
-        const C alpha0 = sp.ky * sp.ky * y * y + sp.kz * sp.kz * near_ * near_;
-        const C b = beta1 * beta0, k = beta0 * beta0 - alpha0 * sp.gamma;
-        const C disc = b * b - sp.a * k;
-        if (!(disc >= 0)) return false;
-        const C root = sqrt(disc);
-        // sp.a < 0: (-b + root) / a is the smaller root.
-        const C x_lo = (-b + root) / sp.a, x_hi = (-b - root) / sp.a;
-        const C c_lo = (x_lo - left_) * column_scale_, c_hi = (x_hi - left_) * column_scale_;
+        C u_lo, u_hi;
+        if (!usable_[i]) return first <= last;
+        if (!silhouettes_[i].row_span(y, u_lo, u_hi)) return false;
+        const C c_lo = (silhouettes_[i].x_of(u_lo) - left_) * column_scale_;
+        const C c_hi = (silhouettes_[i].x_of(u_hi) - left_) * column_scale_;
+        if (c_lo != c_lo || c_hi != c_hi) return first <= last;  // NaN: nothing ruled out
         if (!(c_hi > -3) || !(c_lo < C(columns_) + 3)) return false;
+        using std::floor;
         if (c_lo > C(first) + 2) first = static_cast<int>(floor(c_lo)) - 2;
         if (c_hi < C(last) - 2) last = static_cast<int>(floor(c_hi)) + 2;
         return first <= last;
     }
 
 private:
-    struct Span {
-        C ox, oy, oz, kx, ky, kz, gamma, a;
-        bool exact;
-    };
-    std::vector<Span> spans_;
-    C near_ = 1, left_ = 0, column_scale_ = 1;
+    std::vector<Silhouette<C>> silhouettes_;
+    std::vector<bool> usable_;
+    C left_ = 0, column_scale_ = 1;
     int columns_ = 0;
 };
 

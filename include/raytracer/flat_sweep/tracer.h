@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "raytracer/compiler.h"
@@ -167,14 +168,10 @@ public:
 
     // Per ellipsoid, the columns of a row that may see it (screen_bounds.h).
     RowSpans<C> row_spans(const Scene& scene) const {
-        std::vector<Vec3<C>> centres, scales;
         std::vector<bool> usable;
-        for (std::size_t i = 0; i < ellipsoids_.size(); ++i) {
-            centres.push_back(Vec3<C>::from(ellipsoids_[i].centre));
-            scales.push_back(Vec3<C>::from(ellipsoids_[i].scale));
+        for (std::size_t i = 0; i < ellipsoids_.size(); ++i)
             usable.push_back(bounds_.guards({0, 0, 0}, {0, 0, 0}, i));
-        }
-        return RowSpans<C>(scene, centres, scales, usable);
+        return RowSpans<C>(scene, ellipsoids_, std::move(usable));
     }
 
     const V& background() const { return background_; }
