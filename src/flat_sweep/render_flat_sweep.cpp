@@ -11,6 +11,7 @@
 #include "raytracer/flat_sweep/eye_rays.h"
 #include "raytracer/flat_sweep/tracer.h"
 #include "raytracer/helper_pool.h"
+#include "raytracer/own_cache_lines.h"
 #include "raytracer/render.h"
 #include "raytracer/render_whitted.h"
 #include "raytracer/row_ring.h"
@@ -71,14 +72,15 @@ struct Packet {
 constexpr int kTileRows = kPacket >= 16 ? 4 : 2;
 constexpr int kTileColumns = kPacket / kTileRows;
 
-// One thread's working memory, so that no row or pixel allocates.
+// One thread's working memory, so that no row or pixel allocates, on cache lines of its
+// own (own_cache_lines.h).
 template <typename Real>
 struct Workspace {
     TraceScratch<Real> scratch;
-    std::vector<Span> in_row;            // the row's ellipsoids
-    std::vector<EyeRowHits<Real>> hits;  // per row of a band: each column's nearest hit (eye_rays.h)
-    std::vector<Packet<Real>> packets;   // per ellipsoid
-    std::vector<std::uint32_t> seen;     // the ellipsoids some row of the band may see (repeats allowed)
+    OwnLinesVector<Span> in_row;            // the row's ellipsoids
+    OwnLinesVector<EyeRowHits<Real>> hits;  // per row of a band: each column's nearest hit (eye_rays.h)
+    OwnLinesVector<Packet<Real>> packets;   // per ellipsoid
+    OwnLinesVector<std::uint32_t> seen;     // the ellipsoids some row of the band may see (repeats allowed)
 
     Workspace(const Tracer<Real>& tracer, std::size_t ellipsoids, int columns)
         : scratch(tracer.make_scratch()), hits(kTileRows, EyeRowHits<Real>(columns)), packets(ellipsoids) {
@@ -192,7 +194,7 @@ private:
     // ellipsoid may meet (screen_bounds.h: a pixel that none may meet is the background,
     // without tracing), all columns of each ellipsoid's span at once (eye_rays.h).
     void eye_hits(int r, Band& band, Workspace<Real>& work) {
-        std::vector<Span>& in_row = work.in_row;
+        OwnLinesVector<Span>& in_row = work.in_row;
         std::copy(background_row_.begin(), background_row_.end(), ring_.row(r));
         in_row.clear();
         int lo = scene_.columns, hi = -1;  // the columns some ellipsoid may cover

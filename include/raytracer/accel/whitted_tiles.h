@@ -21,6 +21,7 @@
 #include "raytracer/bit_scan.h"
 #include "raytracer/image.h"
 #include "raytracer/lanes.h"
+#include "raytracer/own_cache_lines.h"
 #include "raytracer/reference/shading.h"
 #include "raytracer/reference/spec_rules.h"
 #include "raytracer/reference/whitted.h"
@@ -77,11 +78,12 @@ public:
         Vec3<Real> colour(int k) const { return lane(chunk[k / kChunk].colour, k % kChunk); }
     };
     // A thread's working memory: the lanes of each bounce, made once (a tile's arrays
-    // are a few KB: set up per tile, they cost more than a missed tile's tracing).
+    // are a few KB: set up per tile, they cost more than a missed tile's tracing), on
+    // cache lines of its own (own_cache_lines.h).
     struct Scratch {
-        std::vector<Bounce> bounces;
+        OwnLinesVector<Bounce> bounces;
     };
-    Scratch make_scratch() const { return {std::vector<Bounce>(kMaxReflections + 1)}; }
+    Scratch make_scratch() const { return {OwnLinesVector<Bounce>(kMaxReflections + 1)}; }
 
     // The bytes of a band of `rows` <= kRows rows, the eye rays of row b through y[b] on
     // the near plane and its bytes from out[b], and `columns` columns, column c's through

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "raytracer/accel/eye_block.h"
+#include "raytracer/own_cache_lines.h"
 #include "raytracer/reference/ellipsoid.h"
 #include "raytracer/vec3.h"
 
@@ -30,11 +31,11 @@ namespace rt {
 template <typename Real>
 struct EyeRowHits {
     static constexpr std::uint32_t kNone = 0xFFFFFFFFU;
-    std::vector<Real> t;                   // infinity until a hit is accepted
-    std::vector<std::uint32_t> ellipsoid;  // kNone until a hit is accepted
+    OwnLinesVector<Real> t;                   // infinity until a hit is accepted
+    OwnLinesVector<std::uint32_t> ellipsoid;  // kNone until a hit is accepted
     // The far root was taken (0 or 1). As wide as the index: with mixed widths GCC's
     // vector code packs and unpacks the lanes (2.5 % more instructions on the course scenes).
-    std::vector<std::uint32_t> inside;
+    OwnLinesVector<std::uint32_t> inside;
 
     explicit EyeRowHits(int columns)
         : t(static_cast<std::size_t>(columns)),

@@ -21,6 +21,7 @@
 #include "raytracer/flat_sweep/screen_bounds.h"
 #include "raytracer/flat_sweep/sphere_bounds.h"
 #include "raytracer/image.h"
+#include "raytracer/own_cache_lines.h"
 #include "raytracer/reference/ellipsoid.h"
 #include "raytracer/reference/spec_rules.h"
 #include "raytracer/scene.h"
@@ -35,13 +36,14 @@ struct PointLight {
 };
 
 // Per-thread working memory of a Tracer, so that no ray allocates: the candidate lists
-// of the bounding-sphere culling and, per light, the ellipsoid that last blocked it.
+// of the bounding-sphere culling and, per light, the ellipsoid that last blocked it; on
+// cache lines of its own (own_cache_lines.h).
 template <typename Real>
 struct TraceScratch {
-    std::vector<std::uint32_t> candidates;
-    std::vector<typename SphereBounds<Real>::C> cull;  // per ellipsoid: culled when not 0
-    std::vector<std::uint32_t> last_occluder;          // per light; kNone when none yet
-    std::vector<std::uint32_t> lanes;                  // per ellipsoid: the rays that may hit it
+    OwnLinesVector<std::uint32_t> candidates;
+    OwnLinesVector<typename SphereBounds<Real>::C> cull;  // per ellipsoid: culled when not 0
+    OwnLinesVector<std::uint32_t> last_occluder;          // per light; kNone when none yet
+    OwnLinesVector<std::uint32_t> lanes;                  // per ellipsoid: the rays that may hit it
     static constexpr std::uint32_t kNone = 0xFFFFFFFFU;
 };
 
