@@ -30,6 +30,7 @@ struct Parser {
     CommandLine line;
     std::vector<std::string> files;
     bool help = false, version = false;
+    std::string threads_text, progress_name;  // as given, for a second one's message
 
     bool wrong(const std::string& what) {
         line.action = CommandLine::Action::Wrong;
@@ -37,19 +38,31 @@ struct Parser {
         return false;
     }
 
+    // A second value for one setting is refused rather than one of them silently taken
+    // (say, a script's -o before the user's own).
+    bool twice(std::string_view name, const std::string& first, const std::string& second) {
+        return wrong(std::string(name) + " given twice (" + shown(first) + " and " + shown(second) +
+                     "), expected it once");
+    }
+
     bool option(std::string_view name, const std::string* value) {
         if (name == "--threads") {
+            if (!threads_text.empty()) return twice(name, threads_text, *value);
             if (!parse_threads(*value, line.threads))
                 return wrong("--threads " + shown(*value) + ", expected a whole number from 1 to 1024");
+            threads_text = *value;
         } else if (name == "--output" || name == "-o") {
+            if (line.output_given) return twice("-o/--output", line.output, *value);
             if (value->empty())
                 return wrong(std::string(name) + " with an empty path, expected a file path or -");
             line.output_given = true;
             line.output = *value;
-        } else if (name == "--progress") {
-            line.progress = CommandLine::Progress::Always;
-        } else if (name == "--quiet") {
-            line.progress = CommandLine::Progress::Never;
+        } else if (name == "--progress" || name == "--quiet") {
+            if (!progress_name.empty() && progress_name != name)
+                return wrong("--progress and --quiet together, expected at most one of them");
+            progress_name = name;
+            line.progress =
+                name == "--progress" ? CommandLine::Progress::Always : CommandLine::Progress::Never;
         } else if (name == "--help" || name == "-h") {
             help = true;
         } else if (name == "--version") {

@@ -37,7 +37,7 @@ const char* usage_text() {
            "up to 3 mirror bounces) and writes it as a binary PPM (P6) to the file named\n"
            "by the scene's OUTPUT line.\n"
            "\n"
-           "Options (anywhere; -- ends them):\n"
+           "Options (anywhere, each at most once; -- ends them):\n"
            "  -o PATH, --output PATH  write the image to PATH instead of OUTPUT; any path,\n"
            "                          a device or a FIFO; -o - writes it to standard output\n"
            "  --threads N             render on N threads (default: all cores); the image\n"

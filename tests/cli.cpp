@@ -151,6 +151,12 @@ TEST(a_wrong_command_line_exits_2_with_one_line_on_stderr) {
         {{"scene.txt", "-o"}, "-o without a value"},
         {{"scene.txt", "--output="}, "--output with an empty path"},
         {{"--quiet=1", "scene.txt"}, "'--quiet' takes no value"},
+        {{"--threads", "2", "scene.txt", "--threads=3"},
+         "--threads given twice ('2' and '3'), expected it once"},
+        {{"-o", "a.ppm", "scene.txt", "--output", "b.ppm"},
+         "-o/--output given twice ('a.ppm' and 'b.ppm'), expected it once"},
+        {{"--progress", "scene.txt", "--quiet"},
+         "--progress and --quiet together, expected at most one of them"},
     };
     for (const auto& [arguments, message] : wrong) {
         const Run r = run(folder, arguments);
