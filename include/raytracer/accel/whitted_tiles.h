@@ -73,7 +73,8 @@ public:
     struct Bounce {
         V origin[N], direction[N];  // as the geometry's bundle queries take them
         NearestHit<Real> hit[N];
-        V point[N];  // the hit points, for the shadow bundles and the next bounce
+        V point[N];        // the hit points, for the shadow bundles and the next bounce
+        unsigned same[N];  // the hits on lane k's ellipsoid (lanes_on_one_ellipsoid())
         Chunk chunk[kChunks];
         Vec3<Real> colour(int k) const { return lane(chunk[k / kChunk].colour, k % kChunk); }
     };
@@ -236,7 +237,21 @@ private:
             h.lit |= material.no_lighting ? 0U : 1U << k;
             h.reflecting |= may_reflect && e.kr > 0 ? 1U << k : 0U;
         }
+        lanes_on_one_ellipsoid(b, h.hits);
         return h;
+    }
+
+    // b.same[k] for each lane k of hits: the lanes of hits on its ellipsoid. Once a
+    // bounce, for every light's bundles (close_lanes()).
+    static void lanes_on_one_ellipsoid(Bounce& b, unsigned hits) {
+        for (unsigned left = hits; left != 0;) {
+            const std::uint32_t on = b.hit[lowest_bit(left)].ellipsoid;
+            unsigned group = 0;
+            for (unsigned m = left; m != 0; m &= m - 1)
+                group |= b.hit[lowest_bit(m)].ellipsoid == on ? 1U << lowest_bit(m) : 0U;
+            for (unsigned m = group; m != 0; m &= m - 1) b.same[lowest_bit(m)] = group;
+            left &= ~group;
+        }
     }
 
     // Light li's terms where it reaches the lanes' points: their light rays, then their
@@ -257,15 +272,19 @@ private:
                 << (i * kChunk));
         }
         facing &= h.lit, own_clear &= static_cast<unsigned>(~h.inside);
-        ClearedLanes in_shells;  // this light's shells, for the lanes they hold
+        // This light's shells, for the lanes they hold, then a bundle's own ellipsoid
+        // after them (set in place: a copy of the shells' list per bundle, read whole
+        // just after its last entry was written, stalled on the store).
+        ClearedLanes cleared;
         for (unsigned m = shells_.of_light(li); m != 0; m &= m - 1)
-            in_shells.add(shells_.ellipsoid(lowest_bit(m)), in_shell[lowest_bit(m)] & h.hits);
+            cleared.add(shells_.ellipsoid(lowest_bit(m)), in_shell[lowest_bit(m)] & h.hits);
+        const int shells = cleared.count;
         unsigned blocked = 0;
         for (unsigned left = facing; left != 0;) {
             const unsigned bundle = close_lanes(b, left);  // on one ellipsoid, or one lane
             left &= ~bundle;
             const std::uint32_t on = b.hit[lowest_bit(bundle)].ellipsoid;
-            ClearedLanes cleared = in_shells;
+            cleared.count = shells;
             cleared.add(on, own_clear & bundle);
             std::uint32_t blocker = hints_.load(on, li);
             blocked |=
@@ -292,19 +311,17 @@ private:
     static constexpr int kBundleLanes = 4;
     unsigned close_lanes(const Bounce& b, unsigned lanes) const {
         const int first = lowest_bit(lanes);
-        const std::uint32_t on = b.hit[first].ellipsoid;
-        const Ellipsoid<Real>& e = tracer_.geometry().ellipsoid(on);
-        unsigned bundle = 0;
-        for (unsigned m = lanes; m != 0; m &= m - 1)
-            bundle |= b.hit[lowest_bit(m)].ellipsoid == on ? 1U << lowest_bit(m) : 0U;
+        const unsigned bundle = b.same[first] & lanes;
+        if (bit_count(bundle) < kBundleLanes) return 1U << first;
         using C = AtLeastDouble<Real>;
         C lo[3], hi[3];
         bounds_of(b.point, bundle, lo, hi);
         using std::abs;
+        const Ellipsoid<Real>& e = tracer_.geometry().ellipsoid(b.hit[first].ellipsoid);
         const C diameter = 2 * C(std::min({abs(e.scale.x), abs(e.scale.y), abs(e.scale.z)}));
         const bool close =
             hi[0] - lo[0] <= diameter && hi[1] - lo[1] <= diameter && hi[2] - lo[2] <= diameter;
-        return close && bit_count(bundle) >= kBundleLanes ? bundle : 1U << first;
+        return close ? bundle : 1U << first;
     }
 
     const Tracer& tracer_;
