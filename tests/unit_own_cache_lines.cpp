@@ -3,7 +3,9 @@
 // lines.
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <memory>
+#include <new>
 #include <vector>
 
 #include "check.h"
@@ -67,4 +69,17 @@ TEST(no_other_allocation_shares_a_line) {
     }
     CHECK_EQ(shared, 0);
     CHECK(plain_shared > 0);
+}
+
+// A count whose bytes, rounded up to whole lines, would wrap around is refused, as
+// std::allocator refuses it, not turned into a small block.
+TEST(a_count_too_large_is_refused) {
+    bool refused = false;
+    try {
+        rt::OwnCacheLines<std::uint32_t> lines;
+        (void)lines.allocate(std::numeric_limits<std::size_t>::max() / 4);
+    } catch (const std::bad_array_new_length&) {
+        refused = true;
+    }
+    CHECK(refused);
 }

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <limits>
 #include <new>
 #include <vector>
 
@@ -20,26 +21,31 @@ namespace rt {
 template <typename T>
 struct OwnCacheLines {
     using value_type = T;
-    // A cache line on the x86-64 and ARM cores this runs on (C++17's
+    // A line here is 128 bytes: x86-64 cores fetch 64-byte lines in pairs (the
+    // adjacent-line prefetcher), and Apple's ARM cores have 128-byte lines (C++17's
     // hardware_destructive_interference_size is not in every standard library).
-    static constexpr std::size_t kLine = 64;
+    static constexpr std::size_t kLine = 128;
     static constexpr std::size_t kAlign = std::max(kLine, alignof(T));
 
-    OwnCacheLines() = default;
+    OwnCacheLines() noexcept = default;
     template <typename U>
-    explicit OwnCacheLines(const OwnCacheLines<U>& /*unused*/) {}
+    OwnCacheLines(const OwnCacheLines<U>& /*unused*/) noexcept {}  // NOLINT: implicit, as std::allocator's
 
     T* allocate(std::size_t n) {
+        // n * sizeof(T) rounded up to whole lines must not wrap around (a vector's own
+        // limit need not be that tight: MSVC's counts elements only).
+        if (n > (std::numeric_limits<std::size_t>::max() - (kAlign - 1)) / sizeof(T))
+            throw std::bad_array_new_length();
         const std::size_t bytes = (n * sizeof(T) + kAlign - 1) / kAlign * kAlign;
         return static_cast<T*>(::operator new (bytes, std::align_val_t{kAlign}));
     }
-    void deallocate(T* p, std::size_t /*n*/) { ::operator delete (p, std::align_val_t{kAlign}); }
+    void deallocate(T* p, std::size_t /*n*/) noexcept { ::operator delete (p, std::align_val_t{kAlign}); }
     template <typename U>
-    bool operator==(const OwnCacheLines<U>& /*unused*/) const {
+    bool operator==(const OwnCacheLines<U>& /*unused*/) const noexcept {
         return true;
     }
     template <typename U>
-    bool operator!=(const OwnCacheLines<U>& /*unused*/) const {
+    bool operator!=(const OwnCacheLines<U>& /*unused*/) const noexcept {
         return false;
     }
 };

@@ -73,9 +73,9 @@ constexpr int kTileRows = kPacket >= 16 ? 4 : 2;
 constexpr int kTileColumns = kPacket / kTileRows;
 
 // One thread's working memory, so that no row or pixel allocates, on cache lines of its
-// own (own_cache_lines.h).
+// own (own_cache_lines.h): its blocks, and its vectors' own pointers, written every row.
 template <typename Real>
-struct Workspace {
+struct alignas(OwnCacheLines<char>::kLine) Workspace {
     TraceScratch<Real> scratch;
     OwnLinesVector<Span> in_row;            // the row's ellipsoids
     OwnLinesVector<EyeRowHits<Real>> hits;  // per row of a band: each column's nearest hit (eye_rays.h)
@@ -269,7 +269,7 @@ template <typename Real>
 void sweep_rows(FlatSweep<Real>& sweep, const Scene& scene, unsigned threads, unsigned most_threads) {
     // Each helper's working memory is made here, so that a helper thread allocates
     // nothing (its first allocation would set up a malloc arena of its own).
-    std::vector<Workspace<Real>> helper_work;
+    OwnLinesVector<Workspace<Real>> helper_work;
     auto help = [&](unsigned h) { sweep.take_rows(helper_work[h], [](int) {}); };
     HelperPool::Job helpers;  // declared after all that help uses: closed first
     auto call_helpers = [&](unsigned count) {

@@ -56,8 +56,9 @@ RT_ALWAYS_INLINE bool make_slab_ray(const C (&o_lo)[3], const C (&o_hi)[3], cons
     constexpr C kInf = std::numeric_limits<C>::infinity();
     bool long_enough = false;  // some axis where every direction's component is >= least
     for (int a = 0; a < 3; ++a) {
-        // A shadow bundle's edges converge (d_lo > d_hi where the light lies between the
-        // points' planes): its lanes' components lie between the two either way.
+        // A shadow bundle's edges converge on its light (d_lo > d_hi once its points
+        // spread wider than the slack; of opposite signs where the light lies between
+        // their planes): its lanes' components lie between the two either way.
         const bool straddles = std::min(d_lo[a], d_hi[a]) <= 0 && std::max(d_lo[a], d_hi[a]) >= 0;
         long_enough = long_enough || (!straddles && std::min(std::abs(d_lo[a]), std::abs(d_hi[a])) >= least);
         // -0 as +0, so that a zero's sign follows the cases below.
