@@ -30,7 +30,6 @@ struct Parser {
     CommandLine line;
     std::vector<std::string> files;
     bool help = false, version = false;
-    std::string threads_text, progress_name;  // as given, for a second one's message
 
     bool wrong(const std::string& what) {
         line.action = CommandLine::Action::Wrong;
@@ -47,10 +46,9 @@ struct Parser {
 
     bool option(std::string_view name, const std::string* value) {
         if (name == "--threads") {
-            if (!threads_text.empty()) return twice(name, threads_text, *value);
+            if (line.threads != 0) return twice(name, std::to_string(line.threads), *value);
             if (!parse_threads(*value, line.threads))
                 return wrong("--threads " + shown(*value) + ", expected a whole number from 1 to 1024");
-            threads_text = *value;
         } else if (name == "--output" || name == "-o") {
             if (line.output_given) return twice("-o/--output", line.output, *value);
             if (value->empty())
@@ -58,11 +56,11 @@ struct Parser {
             line.output_given = true;
             line.output = *value;
         } else if (name == "--progress" || name == "--quiet") {
-            if (!progress_name.empty() && progress_name != name)
-                return wrong("--progress and --quiet together, expected at most one of them");
-            progress_name = name;
-            line.progress =
+            const auto wanted =
                 name == "--progress" ? CommandLine::Progress::Always : CommandLine::Progress::Never;
+            if (line.progress != CommandLine::Progress::WhenTerminal && line.progress != wanted)
+                return wrong("--progress and --quiet together, expected at most one of them");
+            line.progress = wanted;
         } else if (name == "--help" || name == "-h") {
             help = true;
         } else if (name == "--version") {
