@@ -237,6 +237,7 @@ private:
             h.lit |= material.no_lighting ? 0U : 1U << k;
             h.reflecting |= may_reflect && e.kr > 0 ? 1U << k : 0U;
         }
+        for (Chunk& c : b.chunk) share_exponent(c.finish);
         lanes_on_one_ellipsoid(b, h.hits);
         return h;
     }

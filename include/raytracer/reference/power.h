@@ -37,11 +37,6 @@ std::int32_t whole_exponent(Real n) {
 // where its own bit is set, so it is the scalar's product, bit for bit.
 template <typename T, typename K>
 RT_ALWAYS_INLINE T whole_power(T x, K k) {
-    if constexpr (!std::is_arithmetic_v<K>) {
-        // One exponent in every lane (lanes on one ellipsoid): one loop for all,
-        // without a choice per lane.
-        if ((k != K(k[0])) == 0) return whole_power(x, k[0]);
-    }
     T result = T(1);
     if constexpr (std::is_arithmetic_v<K>) {
         // One exponent: a branch rather than a select, which GCC compiles for lanes

@@ -10,6 +10,8 @@
 // channel): a select, where lanes would branch.
 #pragma once
 
+#include <cstdint>
+
 #include "raytracer/compiler.h"
 #include "raytracer/lanes.h"
 #include "raytracer/reference/ellipsoid.h"
@@ -25,21 +27,33 @@ struct Finish {
     Vec3<T> colour;         // O
     T kd, ks, shininess;    // Kd, Ks, n
     IntegerOf<T> exponent;  // whole_exponent(n): -1 where pow() is needed
-    MaskOf<T> specular;     // not specular_is_zero(): a specular term may show
+    // The exponent of every lane where all lanes have the same whole one, else -1 (for
+    // one ray, exponent): one loop of scalar tests for all lanes, where a lane's own
+    // exponent takes a mask per step (power.h).
+    std::int32_t shared_exponent;
+    MaskOf<T> specular;  // not specular_is_zero(): a specular term may show
 };
 
 // Ellipsoid e's Finish (its exponent and specular mask computed here: a few operations).
 template <typename Real>
 Finish<Real> finish_of(const Ellipsoid<Real>& e) {
-    return {e.colour, e.kd, e.ks, e.shininess, whole_exponent(e.shininess), !specular_is_zero(e)};
+    const std::int32_t k = whole_exponent(e.shininess);
+    return {e.colour, e.kd, e.ks, e.shininess, k, k, !specular_is_zero(e)};
 }
 
-// Lane k of a tile's Finish.
+// Lane k of a tile's Finish; its shared_exponent is share_exponent()'s, once every lane
+// is set.
 template <int N, typename Real>
 void set_lane(Finish<Lanes<Real, N>>& lanes, int k, const Finish<Real>& f) {
     set_lane(lanes.colour, k, f.colour);
     lanes.kd[k] = f.kd, lanes.ks[k] = f.ks, lanes.shininess[k] = f.shininess, lanes.exponent[k] = f.exponent;
     lanes.specular = (lanes.specular & ~kLaneBits<N>.bit[k]) | (f.specular ? kLaneBits<N>.bit[k] : 0);
+}
+
+template <int N, typename Real>
+void share_exponent(Finish<Lanes<Real, N>>& f) {
+    f.shared_exponent = f.exponent[0];
+    for (int k = 1; k < N; ++k) f.shared_exponent = f.exponent[k] == f.exponent[0] ? f.shared_exponent : -1;
 }
 
 // A Finish the same in every lane (a packet of hits on one ellipsoid).
@@ -49,6 +63,7 @@ Finish<Lanes<Real, N>> every_lane(const Finish<Real>& f) {
             f.kd,
             f.ks,
             f.shininess,
+            f.exponent,
             f.exponent,
             f.specular ? LaneBits(~LaneBits(0) >> (64 - N)) : LaneBits(0)};
 }
@@ -120,8 +135,9 @@ RT_ALWAYS_INLINE void add_light(Vec3<T>& colour, const SurfacePoint<T>& s, const
     const T r_dot_v = dot(reflected_light, s.to_viewer);
     const MaskOf<T> shines = may_shine & (r_dot_v > T(0));
     if (!any(shines)) return;
-    colour =
-        select(shines, colour + intensity * f.ks * specular_power(r_dot_v, f.shininess, f.exponent), colour);
+    const T power = f.shared_exponent >= 0 ? whole_power(r_dot_v, f.shared_exponent)
+                                           : specular_power(r_dot_v, f.shininess, f.exponent);
+    colour = select(shines, colour + intensity * f.ks * power, colour);
 }
 
 // The direction a mirror of this unit normal sends a ray along direction.
