@@ -1,10 +1,8 @@
 #include "raytracer/file_pieces.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cerrno>
-
-#include "raytracer/helper_pool.h"
+#include <cstring>
 
 #ifndef _WIN32
 #include <sys/types.h>
@@ -14,51 +12,65 @@
 namespace rt {
 
 #ifdef _WIN32
-bool read_in_pieces(std::FILE*, std::size_t, unsigned, char*) { return false; }
+FileAt::FileAt(std::FILE*, std::size_t size) : size_(size) {}
+bool FileAt::read(std::size_t, std::size_t, char*) const { return false; }
+bool FileAt::ends_at_size() const { return false; }
 #else
-namespace {
+FileAt::FileAt(std::FILE* in, std::size_t size) : fd_(fileno(in)), size_(size) {}
 
-// Bytes [offset, offset + size) of file descriptor fd into out; whether they were all
-// there. pread may return fewer bytes than asked: it is called again for the rest.
-bool read_at(int fd, std::size_t offset, std::size_t size, char* out) {
-    while (size > 0) {
-        const ssize_t got = ::pread(fd, out, size, static_cast<off_t>(offset));
+// pread may return fewer bytes than asked: it is called again for the rest.
+bool FileAt::read(std::size_t offset, std::size_t n, char* out) const {
+    while (n > 0) {
+        const ssize_t got = ::pread(fd_, out, n, static_cast<off_t>(offset));
         if (got < 0 && errno == EINTR) continue;
         if (got <= 0) return false;
-        const auto n = static_cast<std::size_t>(got);
-        out += n, offset += n, size -= n;
+        const auto k = static_cast<std::size_t>(got);
+        out += k, offset += k, n -= k;
     }
     return true;
 }
 
-// Whether nothing follows byte `offset` of fd.
-bool ends_at(int fd, std::size_t offset) {
+bool FileAt::ends_at_size() const {
     char byte = 0;
     ssize_t got = 0;
-    do got = ::pread(fd, &byte, 1, static_cast<off_t>(offset));
+    do got = ::pread(fd_, &byte, 1, static_cast<off_t>(size_));
     while (got < 0 && errno == EINTR);
     return got == 0;
 }
-
-}  // namespace
-
-bool read_in_pieces(std::FILE* in, std::size_t size, unsigned threads, char* bytes) {
-    const int fd = fileno(in);
-    const std::size_t pieces = std::max(threads, 1U), piece = size / pieces + 1;
-    std::atomic<std::size_t> next{0};
-    std::atomic<bool> whole{true};
-    auto read_pieces = [&] {
-        for (std::size_t k; whole && (k = next++) < pieces;) {
-            const std::size_t first = std::min(size, k * piece), last = std::min(size, first + piece);
-            if (!read_at(fd, first, last - first, bytes + first)) whole = false;
-        }
-    };
-    HelperPool::Job helpers;
-    helpers.start(static_cast<unsigned>(pieces) - 1, read_pieces);
-    read_pieces();
-    helpers.finish();
-    return whole && ends_at(fd, size);
-}
 #endif
+
+std::optional<std::size_t> FileAt::after_line_feed(std::size_t at) const {
+    char window[512];
+    for (; at < size_; at += sizeof window) {
+        const std::size_t n = std::min(sizeof window, size_ - at);
+        if (!read(at, n, window)) return std::nullopt;
+        if (const void* lf = std::memchr(window, '\n', n))
+            return at + static_cast<std::size_t>(static_cast<const char*>(lf) - window) + 1;
+    }
+    return size_;
+}
+
+bool FileAt::read_lines(std::size_t first, std::size_t end, std::vector<char>& buffer,
+                        const std::function<void(std::string_view)>& lines) const {
+    std::size_t held = 0;  // bytes of a line begun in the chunk before
+    for (std::size_t at = first; at < end;) {
+        const std::size_t n = std::min(kChunkBytes, end - at);
+        if (buffer.size() < held + n) buffer.resize(held + n);
+        if (!read(at, n, buffer.data() + held)) return false;
+        at += n, held += n;
+        // Whole lines: up to the last line end whose line is known to end there (a CR
+        // as the last byte read may be the first of a CR LF).
+        std::size_t whole = at == end ? held : 0;
+        for (std::size_t i = held; whole == 0 && i > 0; --i) {
+            const char c = buffer[i - 1];
+            if (c == '\n' || (c == '\r' && i < held)) whole = i;
+        }
+        if (whole == 0) continue;  // one line goes on: read on
+        lines(std::string_view(buffer.data(), whole));
+        std::memmove(buffer.data(), buffer.data() + whole, held - whole);
+        held -= whole;
+    }
+    return true;
+}
 
 }  // namespace rt

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -18,8 +19,8 @@
 namespace rt {
 
 namespace {
-// A file of at least this many bytes is read in pieces on the helper threads too
-// (file_pieces.h).
+// A file of at least this many bytes is parsed as it is read, in pieces on the helper
+// threads too (file_pieces.h).
 constexpr std::size_t kReadInPiecesBytes = std::size_t{4} << 20;
 }  // namespace
 
@@ -49,40 +50,32 @@ Scene load_scene(const std::string& path) {
     const unsigned threads = available_cores();
     std::error_code ec;
     const std::uintmax_t size = std::filesystem::file_size(path, ec);
-    // A large file of known size: read in pieces, into bytes left unset until then.
-    std::unique_ptr<char[]> bytes;
+    // A large file of known size: parsed as read, in pieces; read again as a stream
+    // where it changed meanwhile (the stream read starts where the handle is: at the start).
     if (kReadsInPieces && !ec && size >= kReadInPiecesBytes && size <= kMaxSceneFileBytes && threads > 1) {
-        bytes.reset(new char[static_cast<std::size_t>(size)]);
-        advise_large_pages(bytes.get(), static_cast<std::size_t>(size));
-        // On failure the stream read below starts where the handle was: at the start.
-        if (!read_in_pieces(in.get(), static_cast<std::size_t>(size), threads, bytes.get())) bytes.reset();
+        if (std::optional<Scene> scene =
+                parse_scene_file(FileAt(in.get(), static_cast<std::size_t>(size)), path, threads))
+            return std::move(*scene);
     }
-    std::string streamed;
-    if (!bytes) {
-        // Reserved at the file's size where the system tells it (one allocation, not a
-        // doubling string's: a 26 MB scene then peaks at 26 MB, not 48).
-        if (!ec && size <= kMaxSceneFileBytes) {
-            streamed.reserve(static_cast<std::size_t>(size));
-            advise_large_pages(streamed.data(), streamed.capacity());
-        }
-        char buffer[1 << 14];
-        for (std::size_t got; (got = std::fread(buffer, 1, sizeof buffer, in.get())) > 0;) {
-            streamed.append(buffer, got);
-            if (streamed.size() > kMaxSceneFileBytes) {
-                throw SceneError(path, 0,
-                                 "is larger than " + std::to_string(kMaxSceneFileBytes >> 20) +
-                                     " MiB, expected a scene file");
-            }
-        }
-        if (std::ferror(in.get()) != 0) throw cannot_read(true, errno);
+    // Reserved at the file's size where the system tells it (one allocation, not a
+    // doubling string's: a 26 MB scene then peaks at 26 MB, not 48).
+    std::string text;
+    if (!ec && size <= kMaxSceneFileBytes) {
+        text.reserve(static_cast<std::size_t>(size));
+        advise_large_pages(text.data(), text.capacity());
     }
-    const std::string_view text =
-        bytes ? std::string_view(bytes.get(), static_cast<std::size_t>(size)) : std::string_view(streamed);
-    if (text.find_first_not_of(" \t\r\n\v\f") == std::string_view::npos)
-        throw SceneError(path, 0, "is empty, expected a scene file");
-    // Windows editors may save UTF-16, whose ASCII letters come with NUL bytes between.
-    if (text.rfind("\xFF\xFE", 0) == 0 || text.rfind("\xFE\xFF", 0) == 0)
-        throw SceneError(path, 0, "is UTF-16 text, expected ASCII or UTF-8 text");
+    char buffer[1 << 14];
+    for (std::size_t got; (got = std::fread(buffer, 1, sizeof buffer, in.get())) > 0;) {
+        text.append(buffer, got);
+        if (text.size() > kMaxSceneFileBytes) {
+            throw SceneError(
+                path, 0,
+                "is larger than " + std::to_string(kMaxSceneFileBytes >> 20) + " MiB, expected a scene file");
+        }
+    }
+    if (std::ferror(in.get()) != 0) throw cannot_read(true, errno);
+    if (text.find_first_not_of(" \t\r\n\v\f") == std::string::npos) throw SceneError(path, 0, kEmptyFile);
+    if (is_utf16(text)) throw SceneError(path, 0, kUtf16Text);
     return parse_scene(text, path, threads);
 }
 

@@ -1,6 +1,7 @@
 // Scene-file parsing. One statement per line: a keyword and a fixed number of fields,
 // all separated by spaces, tabs or CR (SPEC section 2). Reading line by line, rather
-// than as one token stream, lets a short SPHERE line be reported on its own line.
+// than as one token stream, lets a short SPHERE line be reported on its own line; what
+// each statement means and must hold is scene_statements.h's.
 // A large text is cut into pieces at line starts, parsed at once on the helper threads
 // and merged in file order (Piece, merge()): the same scene, and the same first mistake.
 #include "raytracer/parser.h"
@@ -9,7 +10,6 @@
 #include <atomic>
 #include <exception>
 #include <optional>
-#include <sstream>
 #include <utility>
 #include <vector>
 
@@ -17,221 +17,32 @@
 #include "raytracer/large_pages.h"
 #include "raytracer/scene_error.h"
 #include "raytracer/scene_lines.h"
-#include "raytracer/scene_numbers.h"
-#include "raytracer/shown.h"
+#include "scene_statements.h"
 
 namespace rt {
 namespace {
 
-enum class Field { Name, Number, Count };
-enum class Keyword { Near, Left, Right, Bottom, Top, Res, Sphere, Light, Back, Ambient, Output };
+using statements_of_scenes::fail;
+using statements_of_scenes::Failure;
+using statements_of_scenes::SceneBuilder;
+using statements_of_scenes::Statement;
+using statements_of_scenes::statement_of;
 
-struct Statement {
-    Keyword kind;
-    std::string_view keyword;
-    bool required_once;  // false: SPHERE and LIGHT, any number of times
-    std::vector<const char*> field_names;
-    std::vector<Field> field_kinds;
-};
+// The fewest bytes a SPHERE line takes: the keyword and 15 fields of one byte, each
+// after a separator. So a text of b bytes declares at most b / 36 + 1 ellipsoids.
+constexpr std::size_t kShortestSphereLine = 36;
 
-const std::vector<Statement>& statements() {
-    using F = Field;
-    using K = Keyword;
-    static const std::vector<Statement> table = {
-        {K::Near, "NEAR", true, {"n"}, {F::Number}},
-        {K::Left, "LEFT", true, {"l"}, {F::Number}},
-        {K::Right, "RIGHT", true, {"r"}, {F::Number}},
-        {K::Bottom, "BOTTOM", true, {"b"}, {F::Number}},
-        {K::Top, "TOP", true, {"t"}, {F::Number}},
-        {K::Res, "RES", true, {"x", "y"}, {F::Count, F::Count}},
-        {K::Sphere,
-         "SPHERE",
-         false,
-         {"name", "pos x", "pos y", "pos z", "scl x", "scl y", "scl z", "r", "g", "b", "Ka", "Kd", "Ks", "Kr",
-          "n"},
-         {F::Name, F::Number, F::Number, F::Number, F::Number, F::Number, F::Number, F::Number, F::Number,
-          F::Number, F::Number, F::Number, F::Number, F::Number, F::Number}},
-        {K::Light,
-         "LIGHT",
-         false,
-         {"name", "pos x", "pos y", "pos z", "Ir", "Ig", "Ib"},
-         {F::Name, F::Number, F::Number, F::Number, F::Number, F::Number, F::Number}},
-        {K::Back, "BACK", true, {"r", "g", "b"}, {F::Number, F::Number, F::Number}},
-        {K::Ambient, "AMBIENT", true, {"Ir", "Ig", "Ib"}, {F::Number, F::Number, F::Number}},
-        {K::Output, "OUTPUT", true, {"name"}, {F::Name}},
-    };
-    return table;
-}
-
-std::string usage_of(const Statement& s) {
-    std::string text(s.keyword);
-    for (const char* name : s.field_names) text += std::string(" <") + name + ">";
-    return text;
-}
-
-std::string keyword_list() {
-    std::string text;
-    for (const Statement& s : statements()) text += (text.empty() ? "" : ", ") + std::string(s.keyword);
-    return text;
-}
-
-// A mistake: its line (0: the file as a whole) and what is wrong. A piece of the text
-// counts its lines from its own first; the merge turns it into a SceneError.
-struct Failure {
-    int line;
-    std::string what;
-};
-[[noreturn]] void fail(int line, std::string what) { throw Failure{line, std::move(what)}; }
-
-const Statement& statement_of(std::string_view keyword, int line) {
-    for (const Statement& s : statements())
-        if (keyword == s.keyword) return s;
-    fail(line, "unknown keyword " + shown(keyword) + ", expected one of " + keyword_list());
-}
-
-// The fields of one statement, converted and checked for form (not yet for meaning),
-// each kind in the order given: no allocation per line.
-struct Fields {
-    static constexpr std::size_t kMax = 15;   // SPHERE's
-    std::string_view names[kMax], raw[kMax];  // raw: every field as written, for messages
-    double numbers[kMax] = {};
-    long long counts[kMax] = {};
-};
-
-// Applies statements to a scene, checking each, and the scene once it is complete.
-class SceneBuilder {
-public:
-    Scene scene;
-
-    void statement(const Statement& found, const std::vector<std::string_view>& tokens, int line) {
-        const std::size_t given = tokens.size() - 1;
-        const std::size_t wanted = found.field_names.size();
-        if (given != wanted) {
-            fail(line, std::string(found.keyword) + " has " + std::to_string(given) + " field" +
-                           (given == 1 ? "" : "s") + ", expected " + std::to_string(wanted) + ": " +
-                           usage_of(found));
-        }
-
-        const std::size_t index = static_cast<std::size_t>(&found - statements().data());
-        if (found.required_once) {
-            if (first_line_[index] != 0) {
-                fail(line, "a second " + std::string(found.keyword) + " (the first is on line " +
-                               std::to_string(first_line_[index]) + "), expected exactly one");
-            }
-            first_line_[index] = line;
-        }
-
-        Fields& f = fields_;  // reused: its arrays are not set up a line
-        std::size_t names = 0, numbers = 0, counts = 0;
-        for (std::size_t i = 0; i < wanted; ++i) {
-            const std::string_view token = tokens[i + 1];
-            f.raw[i] = token;
-            auto what = [&] {  // only for a message: most lines have none
-                return std::string(found.keyword) + " <" + found.field_names[i] + "> is " + shown(token);
-            };
-            switch (found.field_kinds[i]) {
-                case Field::Name:
-                    f.names[names++] = token;
-                    break;
-                case Field::Number:
-                    if (auto value = to_double(token))
-                        f.numbers[numbers++] = *value;
-                    else
-                        fail(line, what() + ", expected a finite decimal number");
-                    break;
-                case Field::Count:
-                    if (auto value = to_integer(token); value && *value > 0)
-                        f.counts[counts++] = *value;
-                    else
-                        fail(line, what() + ", expected a positive whole number");
-                    break;
-            }
-        }
-        apply(found.kind, f, line);
-    }
-
-    void apply(Keyword kind, const Fields& f, int line) {
-        using K = Keyword;
-        const double* v = f.numbers;
-        if (kind == K::Near) {
-            if (!(v[0] > 0)) fail(line, "NEAR is " + format(v[0]) + ", expected a distance greater than 0");
-            scene.near_plane = v[0];
-        } else if (kind == K::Left) {
-            scene.left = v[0];
-        } else if (kind == K::Right) {
-            scene.right = v[0];
-        } else if (kind == K::Bottom) {
-            scene.bottom = v[0];
-        } else if (kind == K::Top) {
-            scene.top = v[0];
-        } else if (kind == K::Res) {
-            const long long columns = f.counts[0], rows = f.counts[1];
-            if (columns > kMaxImageSide || rows > kMaxImageSide || columns * rows > kMaxImagePixels) {
-                fail(line, "RES " + std::to_string(columns) + " " + std::to_string(rows) +
-                               " is too large, expected at most " + std::to_string(kMaxImageSide) +
-                               " a side and " + std::to_string(kMaxImagePixels) + " pixels");
-            }
-            scene.columns = static_cast<int>(columns);
-            scene.rows = static_cast<int>(rows);
-        } else if (kind == K::Sphere) {
-            for (std::size_t axis = 0; axis < 3; ++axis) {
-                if (v[3 + axis] == 0) {
-                    fail(line, "SPHERE " + shown(f.names[0]) + " <scl " + "xyz"[axis] + "> is " +
-                                   shown(f.raw[4 + axis]) + ", expected a non-zero scale");
-                }
-            }
-            SphereSpec& s = scene.spheres.emplace_back();
-            s.name = f.names[0];
-            s.centre = {v[0], v[1], v[2]}, s.scale = {v[3], v[4], v[5]}, s.colour = {v[6], v[7], v[8]};
-            s.ka = v[9], s.kd = v[10], s.ks = v[11], s.kr = v[12], s.shininess = v[13];
-            s.line = line;
-        } else if (kind == K::Light) {
-            scene.lights.push_back({std::string(f.names[0]), {v[0], v[1], v[2]}, {v[3], v[4], v[5]}, line});
-        } else if (kind == K::Back) {
-            scene.background = {v[0], v[1], v[2]};
-        } else if (kind == K::Ambient) {
-            scene.ambient = {v[0], v[1], v[2]};
-        } else if (kind == K::Output) {
-            scene.output = std::string(f.names[0]);
-            scene.output_line = line;
-        }
-    }
-
-    static std::string format(double value) {
-        std::ostringstream out;
-        out << value;
-        return out.str();
-    }
-
-    int line_of(std::string_view keyword) const {
-        for (std::size_t i = 0; i < statements().size(); ++i)
-            if (keyword == statements()[i].keyword) return first_line_[i];
-        return 0;
-    }
-
-    void check_complete() const {
-        for (std::size_t i = 0; i < statements().size(); ++i) {
-            if (statements()[i].required_once && first_line_[i] == 0) {
-                fail(0, "no " + std::string(statements()[i].keyword) +
-                            " line, expected exactly one: " + usage_of(statements()[i]));
-            }
-        }
-        // Each pair is reported on the line of whichever of the two came later.
-        if (!(scene.left < scene.right)) {
-            fail(std::max(line_of("LEFT"), line_of("RIGHT")), "LEFT " + format(scene.left) + " and RIGHT " +
-                                                                  format(scene.right) +
-                                                                  ", expected LEFT < RIGHT");
-        }
-        if (!(scene.bottom < scene.top)) {
-            fail(std::max(line_of("BOTTOM"), line_of("TOP")), "BOTTOM " + format(scene.bottom) + " and TOP " +
-                                                                  format(scene.top) +
-                                                                  ", expected BOTTOM < TOP");
-        }
-    }
-
-private:
-    Fields fields_;                                                        // of the current line
-    std::vector<int> first_line_ = std::vector<int>(statements().size());  // per kind: its first line
+// What a thread keeps from piece to piece: its buffers, and one list for the spheres
+// of every piece but the first that it parses, each piece a range of it.
+//
+// WHY: few large lists, reserved once (Piece::reserve()), go on 2 MiB pages
+// (large_pages.h), where a list per piece, reserved for its own bytes, took 4 KiB
+// pages and a fault each: random 100k read and prepared, 6,400 faults and 121 ms
+// against 2,900-3,600 and 87-90 ms.
+struct PieceThread {
+    std::vector<char> buffer;              // a file's chunk (file_pieces.h)
+    std::vector<std::string_view> tokens;  // of the current line
+    std::vector<SphereSpec> spheres;
 };
 
 // A piece of the text, from a line's start to the next piece's, parsed on its own: its
@@ -239,99 +50,155 @@ private:
 // alone knows whether an earlier piece had one: so that a piece stops at the same
 // first mistake as the whole file would. Nothing else carries from line to line.
 struct Piece {
-    std::string_view text;
-    // Its list of spheres is reserved for one per "SPHERE" in this text: the first
-    // piece's for the whole text, as the merge appends the other pieces' to it.
-    std::string_view reserve_for;
-    SceneBuilder spheres_and_lights;
-    std::vector<std::pair<int, std::string_view>> once;  // each line and the text from it on
+    std::string_view text;           // the piece in memory, or
+    const FileAt* file = nullptr;    // bytes [first, end) of this file, read as parsed
+    std::size_t first = 0, end = 0;  // (file_pieces.h)
+    // The bytes whose spheres its list is reserved for, where the list is new: the whole
+    // text for the first piece (the merge appends the others' to its list), the rest of
+    // the text for the others (one thread may parse all of them).
+    std::size_t reserve_for = 0;
+    SceneBuilder spheres_and_lights;  // its lights, and the first piece's spheres
+    // The other pieces' spheres: [spheres_from, spheres_to) of their thread's list.
+    std::vector<SphereSpec>* spheres = nullptr;
+    std::size_t spheres_from = 0, spheres_to = 0;
+    std::vector<std::pair<int, std::string>> once;  // each such line and its number
     int lines = 0;
+    bool any_token = false;          // some line holds a token
+    bool unread = false;             // a read of the file failed or came short
     std::optional<Failure> failure;  // the piece's first mistake: it stops there
     std::exception_ptr exception;    // anything else (out of memory), rethrown in the merge
 
-    void parse() {
+    void parse(PieceThread& thread, bool first_piece) {
+        std::vector<SphereSpec>& list = spheres_and_lights.scene.spheres;
+        if (!first_piece) list.swap(thread.spheres), spheres = &thread.spheres, spheres_from = list.size();
         try {
-            // At most one ellipsoid per "SPHERE": reserved, so that the list is not
-            // copied as it grows (nor its peak twice its size).
-            std::size_t spheres = 0;
-            for (std::size_t at = reserve_for.find("SPHERE"); at != std::string_view::npos;
-                 at = reserve_for.find("SPHERE", at + 6))
-                ++spheres;
-            reserve_large(spheres_and_lights.scene.spheres, spheres);
-            std::vector<std::string_view> tokens;  // of the current line
-            for (std::string_view rest = text; !rest.empty();) {
-                ++lines;
-                const std::size_t end = split_line(rest, tokens);
-                // A NUL byte never occurs in a text file; say so rather than "unknown keyword".
-                if (end == std::string_view::npos)
-                    fail(lines, "a NUL byte (a binary file?), expected a text scene file");
-                if (!tokens.empty()) {  // blank lines are allowed anywhere
-                    const Statement& s = statement_of(tokens[0], lines);
-                    if (s.required_once)
-                        once.emplace_back(lines, rest);
-                    else
-                        spheres_and_lights.statement(s, tokens, lines);
+            auto whole_lines = [&](std::string_view chunk) {
+                if (list.capacity() == 0) reserve(list, chunk);
+                for (std::string_view rest = chunk; !rest.empty();) {
+                    ++lines;
+                    const std::size_t line_end = split_line(rest, thread.tokens);
+                    // A NUL byte never occurs in a text file; say so rather than "unknown keyword".
+                    if (line_end == std::string_view::npos)
+                        fail(lines, "a NUL byte (a binary file?), expected a text scene file");
+                    if (!thread.tokens.empty()) {  // blank lines are allowed anywhere
+                        any_token = true;
+                        const Statement& s = statement_of(thread.tokens[0], lines);
+                        if (s.required_once)
+                            once.emplace_back(lines, rest.substr(0, line_end));
+                        else
+                            spheres_and_lights.statement(s, thread.tokens, lines);
+                    }
+                    rest.remove_prefix(next_line(rest, line_end));
                 }
-                rest.remove_prefix(next_line(rest, end));
-            }
+            };
+            if (file == nullptr)
+                whole_lines(text);
+            else
+                unread = !file->read_lines(first, end, thread.buffer, whole_lines);
         } catch (Failure& f) {
+            any_token = true;  // a mistake is never in blank lines
             failure = std::move(f);
         } catch (...) {
             exception = std::current_exception();
         }
+        if (!first_piece) spheres_to = list.size(), list.swap(thread.spheres);
+    }
+
+    // The list reserved, so that it is not copied as it grows (nor its peak twice its
+    // size): for one sphere per "SPHERE" in the sample (the piece's first chunk, the
+    // text not being at hand for a file), scaled to reserve_for bytes, and an eighth
+    // more; a list that outgrows it is copied, as any vector. (Reserved for the most
+    // those bytes can hold, kShortestSphereLine, it took 4 times the address space.)
+    void reserve(std::vector<SphereSpec>& list, std::string_view sample) const {
+        sample = sample.substr(0, FileAt::kChunkBytes);
+        std::size_t spheres = 0;
+        for (std::size_t at = sample.find("SPHERE"); at != std::string_view::npos;
+             at = sample.find("SPHERE", at + 6))
+            ++spheres;
+        if (sample.size() < reserve_for) {
+            const double scaled = double(spheres) * (double(reserve_for) / double(sample.size())) * 1.125;
+            spheres = std::min(reserve_for / kShortestSphereLine + 1, static_cast<std::size_t>(scaled));
+        }
+        reserve_large(list, spheres);
     }
 };
 
-// The text cut for `threads` threads, each piece ending with the first LF at or after
-// its bound (a CR LF is never cut): a first piece of 1/threads of the text, which this
-// thread takes first, then pieces of a quarter of that (at least kParsePieceBytes), taken
-// by whichever thread is free: a helper that starts late or runs slowly (its core
-// shared) then holds up the merge by one small piece at most, not by half the text.
-std::vector<Piece> cut(std::string_view text, unsigned threads) {
-    const std::size_t share = std::max(kParsePieceBytes, text.size() / std::max(threads, 1U));
+// Where the text of `size` bytes is cut for `threads` threads: each piece ends with
+// the first LF at or after its bound (a CR LF is never cut), found by line_end(at): a
+// first piece of 1/threads of the text, which this thread takes first, then pieces of
+// a quarter of that (at least kParsePieceBytes), taken by whichever thread is free: a
+// helper that starts late or runs slowly (its core shared) then holds up the merge by
+// one small piece at most, not by half the text. Piece k is [starts[k], starts[k + 1]).
+template <typename AfterLineFeed>
+std::vector<std::size_t> cut(std::size_t size, unsigned threads, AfterLineFeed after_line_feed) {
+    const std::size_t share = std::max(kParsePieceBytes, size / std::max(threads, 1U));
     const std::size_t step = std::max(kParsePieceBytes, share / 4);
-    std::vector<Piece> pieces;
-    std::size_t start = 0, bound = threads > 1 ? share : text.size();
-    do {  // at least one piece, empty for an empty text
-        std::size_t end =
-            bound >= text.size() ? std::string_view::npos : text.find('\n', std::max(start, bound));
-        end = end == std::string_view::npos ? text.size() : end + 1;
-        Piece& piece = pieces.emplace_back();
-        piece.text = text.substr(start, end - start);
-        piece.reserve_for = start == 0 ? text : piece.text;
-        start = end, bound += step;
-    } while (start < text.size());
-    return pieces;
+    std::vector<std::size_t> starts{0};
+    for (std::size_t bound = threads > 1 ? share : size;; bound += step) {
+        const std::size_t end = bound >= size ? size : after_line_feed(std::max(starts.back(), bound));
+        starts.push_back(end);
+        if (end >= size) return starts;  // at least one piece, empty for an empty text
+    }
+}
+
+// The pieces parsed: the first on this thread, then each by whichever thread is free,
+// the spheres of all but the first into its threads' lists (one a thread).
+void parse_all(std::vector<Piece>& parts, std::vector<PieceThread>& threads) {
+    std::atomic<std::size_t> next{1}, next_thread{0};
+    // From piece k on, then each next piece left.
+    auto parse_pieces = [&](std::size_t k) {
+        PieceThread& thread = threads[next_thread++];
+        for (; k < parts.size(); k = next++) parts[k].parse(thread, k == 0);
+    };
+    auto helper = [&] { parse_pieces(next++); };
+    HelperPool::Job helpers;
+    if (parts.size() > 1) helpers.start(static_cast<unsigned>(threads.size()) - 1, helper);
+    parse_pieces(0);
+    helpers.finish();
+}
+
+// The pieces [starts[k], starts[k + 1]) of a text of starts.back() bytes, for
+// parse_all(), each with its list's reserve_for.
+std::vector<Piece> pieces_of(const std::vector<std::size_t>& starts) {
+    std::vector<Piece> parts(starts.size() - 1);
+    for (std::size_t k = 0; k < parts.size(); ++k)
+        parts[k].reserve_for = k == 0 ? starts.back() : starts.back() - starts[1];
+    return parts;
 }
 
 // The pieces in file order into one scene: each piece's statements that must occur once,
 // which all came before its first mistake, then that mistake, then its spheres and
 // lights, their lines counted on from the pieces before (the first piece's lists taken
-// as they are: no copy).
-Scene merge(std::vector<Piece>& pieces) {
+// as they are: no copy). A mistake is thrown as file_name's SceneError.
+Scene merge(std::vector<Piece>& pieces, const std::string& file_name) {
     SceneBuilder all;
     int offset = 0;
     std::vector<std::string_view> tokens;
-    for (Piece& p : pieces) {
-        for (const auto& [line, text] : p.once) {
-            split_line(text, tokens);
-            all.statement(statement_of(tokens[0], offset + line), tokens, offset + line);
+    try {
+        for (Piece& p : pieces) {
+            for (const auto& [line, text] : p.once) {
+                split_line(text, tokens);
+                all.statement(statement_of(tokens[0], offset + line), tokens, offset + line);
+            }
+            if (p.failure) fail(offset + p.failure->line, p.failure->what);
+            if (p.exception) std::rethrow_exception(p.exception);
+            Scene& s = p.spheres_and_lights.scene;
+            if (&p == &pieces.front()) {
+                all.scene.spheres = std::move(s.spheres), all.scene.lights = std::move(s.lights);
+            } else {
+                for (std::size_t i = p.spheres_from; i < p.spheres_to; ++i) {
+                    all.scene.spheres.push_back(std::move((*p.spheres)[i]));
+                    all.scene.spheres.back().line += offset;
+                }
+                for (LightSpec& light : s.lights)
+                    light.line += offset, all.scene.lights.push_back(std::move(light));
+            }
+            offset += p.lines;
         }
-        if (p.failure) fail(offset + p.failure->line, p.failure->what);
-        if (p.exception) std::rethrow_exception(p.exception);
-        Scene& s = p.spheres_and_lights.scene;
-        if (&p == &pieces.front()) {
-            all.scene.spheres = std::move(s.spheres), all.scene.lights = std::move(s.lights);
-        } else {
-            for (SphereSpec& sphere : s.spheres)
-                sphere.line += offset, all.scene.spheres.push_back(std::move(sphere));
-            for (LightSpec& light : s.lights)
-                light.line += offset, all.scene.lights.push_back(std::move(light));
-            std::vector<SphereSpec>().swap(s.spheres);  // not needed past this: a lower peak
-        }
-        offset += p.lines;
+        all.check_complete();
+    } catch (const Failure& f) {
+        throw SceneError(file_name, f.line, f.what);
     }
-    all.check_complete();
     return std::move(all.scene);
 }
 
@@ -339,24 +206,43 @@ Scene merge(std::vector<Piece>& pieces) {
 
 Scene parse_scene(std::string_view text, const std::string& file_name, unsigned threads) {
     // A UTF-8 byte-order mark, as some Windows editors write, is not part of the scene.
-    if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
-    std::vector<Piece> parts = cut(text, threads);
-    // The first piece on this thread, then every thread takes the next piece left.
-    std::atomic<std::size_t> next{1};
-    auto parse_pieces = [&] {
-        for (std::size_t k; (k = next++) < parts.size();) parts[k].parse();
-    };
-    HelperPool::Job helpers;
-    if (parts.size() > 1)
-        helpers.start(std::min(threads, static_cast<unsigned>(parts.size())) - 1, parse_pieces);
-    parts[0].parse();
-    parse_pieces();
-    helpers.finish();
-    try {
-        return merge(parts);
-    } catch (const Failure& f) {
-        throw SceneError(file_name, f.line, f.what);
-    }
+    if (text.substr(0, 3) == kUtf8Mark) text.remove_prefix(3);
+    const std::vector<std::size_t> starts = cut(text.size(), threads, [text](std::size_t at) {
+        const std::size_t lf = text.find('\n', at);
+        return lf == std::string_view::npos ? text.size() : lf + 1;
+    });
+    std::vector<Piece> parts = pieces_of(starts);
+    for (std::size_t k = 0; k < parts.size(); ++k)
+        parts[k].text = text.substr(starts[k], starts[k + 1] - starts[k]);
+    std::vector<PieceThread> lists(std::min<std::size_t>(std::max(threads, 1U), parts.size()));
+    parse_all(parts, lists);
+    return merge(parts, file_name);
+}
+
+std::optional<Scene> parse_scene_file(const FileAt& file, const std::string& file_name, unsigned threads) {
+    char mark[3] = {};
+    const std::size_t marked = std::min<std::size_t>(3, file.size());
+    if (!file.read(0, marked, mark)) return std::nullopt;
+    if (is_utf16(std::string_view(mark, marked))) throw SceneError(file_name, 0, kUtf16Text);
+    const bool utf8_mark = std::string_view(mark, marked) == kUtf8Mark;
+    bool unread = false;
+    std::vector<std::size_t> starts = cut(file.size(), threads, [&](std::size_t at) {
+        const std::optional<std::size_t> next = file.after_line_feed(at);
+        unread = unread || !next;
+        return next.value_or(file.size());
+    });
+    if (unread) return std::nullopt;
+    std::vector<Piece> parts = pieces_of(starts);
+    for (std::size_t k = 0; k < parts.size(); ++k)
+        parts[k].file = &file, parts[k].first = starts[k], parts[k].end = starts[k + 1];
+    if (utf8_mark) parts[0].first = std::min<std::size_t>(3, starts[1]);  // not part of the scene
+    std::vector<PieceThread> lists(std::min<std::size_t>(std::max(threads, 1U), parts.size()));
+    parse_all(parts, lists);
+    bool any_token = utf8_mark;  // a mark alone is not an empty file, as in load_scene()
+    for (const Piece& p : parts) unread = unread || p.unread, any_token = any_token || p.any_token;
+    if (unread || !file.ends_at_size()) return std::nullopt;
+    if (!any_token) throw SceneError(file_name, 0, kEmptyFile);
+    return merge(parts, file_name);
 }
 
 }  // namespace rt

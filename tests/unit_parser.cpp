@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <random>
 #include <string>
 #include <string_view>
@@ -388,27 +389,106 @@ struct TempFile {
 
 }  // namespace
 
-// read_in_pieces() (file_pieces.h) gives the file's bytes for any number of pieces, up
-// to more pieces than bytes, and false for a size the file does not have (a file that
-// changed since its size was taken); it leaves the handle's position as it was.
-TEST(read_in_pieces_gives_the_file_or_false) {
+// FileAt::read_lines() (file_pieces.h) gives bytes [first, end) of the file in order,
+// each chunk ending after a line end (never between the CR and LF of a CR LF) or at
+// end, also for lines longer than a chunk; after_line_feed() finds the next line; a
+// size the file does not have (it changed since its size was taken) fails. The
+// handle's position stays where it was.
+TEST(file_at_reads_whole_lines_in_order) {
     std::mt19937 random(3);
-    std::string bytes(300001, ' ');
-    for (char& c : bytes) c = static_cast<char>(random() % 256);
+    std::string bytes(3 * rt::FileAt::kChunkBytes + 12345, ' ');
+    for (char& c : bytes) c = "ab \r\n\0\xFF"[random() % 7];
+    for (std::size_t k = 0; k < rt::FileAt::kChunkBytes + 99; ++k) bytes[1000 + k] = 'x';  // a long line
     const TempFile file(bytes);
     const std::unique_ptr<std::FILE, int (*)(std::FILE*)> in(std::fopen(file.path.string().c_str(), "rb"),
                                                              &std::fclose);
     CHECK(in != nullptr);
     if (!in) return;
-    std::vector<char> got(bytes.size() + 1);
-    for (unsigned threads : {1U, 2U, 3U, 7U, 64U}) {
-        std::fill(got.begin(), got.end(), '\0');
-        CHECK_EQ(rt::read_in_pieces(in.get(), bytes.size(), threads, got.data()), rt::kReadsInPieces);
-        if (rt::kReadsInPieces) CHECK(std::string(got.data(), bytes.size()) == bytes);
-        CHECK(!rt::read_in_pieces(in.get(), bytes.size() - 1, threads, got.data()));  // more follows
-        CHECK(!rt::read_in_pieces(in.get(), bytes.size() + 1, threads, got.data()));  // short
+    const rt::FileAt at(in.get(), bytes.size());
+    std::vector<char> buffer;
+    for (const auto& range :
+         std::vector<std::pair<std::size_t, std::size_t>>{{0, bytes.size()},
+                                                          {1000, 2000},
+                                                          {999, bytes.size() - 1},
+                                                          {5, 5},
+                                                          {bytes.size() - 3, bytes.size()}}) {
+        const std::size_t first = range.first, end = range.second;
+        std::string got;
+        bool whole = true;
+        const bool read = at.read_lines(first, end, buffer, [&](std::string_view chunk) {
+            const std::size_t chunk_end = first + got.size() + chunk.size();
+            const char last = chunk.back();
+            whole = whole && (chunk_end == end || last == '\n' || (last == '\r' && bytes[chunk_end] != '\n'));
+            got += chunk;
+        });
+        CHECK_EQ(read, rt::kReadsInPieces);
+        if (!rt::kReadsInPieces) continue;
+        CHECK(whole);
+        CHECK(got == bytes.substr(first, end - first));
+    }
+    if (rt::kReadsInPieces) {
+        for (std::size_t from : {std::size_t{0}, std::size_t{1000}, bytes.size() - 2}) {
+            const std::size_t lf = bytes.find('\n', from);
+            CHECK(at.after_line_feed(from) == (lf == std::string::npos ? bytes.size() : lf + 1));
+        }
+        CHECK(at.ends_at_size());
+        CHECK(!rt::FileAt(in.get(), bytes.size() - 1).ends_at_size());  // more follows
+        const rt::FileAt longer(in.get(), bytes.size() + 1);            // short
+        CHECK(!longer.read_lines(0, longer.size(), buffer, [](std::string_view) {}));
     }
     CHECK_EQ(std::ftell(in.get()), 0L);
+}
+
+// parse_scene_file() gives what reading the whole text gives: the scene, for any line
+// ends, byte-order mark and number of pieces; the first mistake on its line; an empty
+// and a UTF-16 text refused as load_scene() refuses them.
+TEST(a_file_parsed_as_read_gives_the_scene_of_its_text) {
+    std::vector<std::string> lines = many_lines();
+    std::swap(lines[10], lines.back());
+    auto expected = [](const std::string& text) {  // load_scene() of a small file
+        if (text.find_first_not_of(" \t\r\n\v\f") == std::string::npos) return std::string(rt::kEmptyFile);
+        if (rt::is_utf16(text)) return std::string(rt::kUtf16Text);
+        try {
+            rt::parse_scene(text, "big.txt", 1);
+        } catch (const rt::SceneError& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    std::vector<std::string> texts;
+    for (const char* end : {"\n", "\r\n", "\r"}) texts.push_back(joined(lines, end));
+    texts.push_back(std::string(rt::kUtf8Mark) + texts[0]);
+    std::vector<std::string> bad = lines;
+    bad[bad.size() * 3 / 4] = "SPHERE bad 0 0 -10 1 0 1 1 1 1 1 1 1 0 5";
+    texts.push_back(joined(bad, "\r\n"));
+    bad[bad.size() / 2] = std::string("NEAR \0", 6);
+    texts.push_back(joined(bad));
+    texts.push_back(std::string(3 * rt::kParsePieceBytes, ' ') + "\n\r\n\t");
+    texts.push_back(std::string(rt::kUtf8Mark) + texts.back());
+    texts.push_back("\xFF\xFE" + texts[0]);
+    for (const std::string& text : texts) {
+        const TempFile file(text);
+        const std::unique_ptr<std::FILE, int (*)(std::FILE*)> in(std::fopen(file.path.string().c_str(), "rb"),
+                                                                 &std::fclose);
+        CHECK(in != nullptr);
+        if (!in || !rt::kReadsInPieces) continue;
+        const std::string wanted = expected(text);
+        for (unsigned threads : {1U, 2U, 3U, 16U}) {
+            std::string message;
+            try {
+                const std::optional<rt::Scene> scene =
+                    rt::parse_scene_file(rt::FileAt(in.get(), text.size()), "big.txt", threads);
+                CHECK(scene.has_value());
+                if (scene) CHECK(same_scene(*scene, rt::parse_scene(text, "big.txt", 1)));
+            } catch (const rt::SceneError& e) {
+                message = e.what();
+            }
+            CHECK(contains(message, wanted));
+            CHECK_EQ(message.empty(), wanted.empty());
+        }
+        if (wanted.empty())  // it has grown since its size was taken
+            CHECK(!rt::parse_scene_file(rt::FileAt(in.get(), text.size() - 1), "big.txt", 2));
+    }
 }
 
 // A file large enough to be read in pieces (load_scene.cpp: 4 MiB, on a machine of two

@@ -1,28 +1,57 @@
-// A large scene file read in pieces on the helper threads (load_scene.cpp).
+// A large scene file read at offsets by the threads that parse it, a chunk of whole
+// lines at a time, so that its text is never whole in memory (parse_scene_file(),
+// parser.h).
 //
-// WHY: reading random 100k's 26 MB took 21 ms on one thread, nearly all of it the first
-// touch of the fresh pages the bytes are copied into (about 2 us a page here); two
-// threads copying a piece each take 10 ms.
+// WHY: the first touch of fresh memory is what reading costs here (about 2 us a 4 KiB
+// page on this machine kind). Random 100k's 26 MB read into one array took 19-40 ms
+// on two threads; read a chunk at a time into one buffer per thread, reused, 6 ms; and
+// the process's peak is 26 MB lower.
 #pragma once
 
 #include <cstddef>
 #include <cstdio>
+#include <functional>
+#include <optional>
+#include <string_view>
+#include <vector>
 
 namespace rt {
 
-// Whether read_in_pieces() can read at an offset of its own on this system: positioned
-// reads (pread) on POSIX; on Windows the caller reads the file as a stream.
+// Whether a file can be read at an offset on this system without moving a shared
+// position (pread on POSIX); on Windows a scene file is read as a stream.
 #ifdef _WIN32
 inline constexpr bool kReadsInPieces = false;
 #else
 inline constexpr bool kReadsInPieces = true;
 #endif
 
-// The `size` bytes of the file open as `in` into bytes, one piece per thread, each taken
-// by whichever thread is free, all from that one handle (so from that one file, even
-// where another is renamed over its name meanwhile) by reads at an offset, which leave
-// its position where it was. False where the file does not hold exactly `size` bytes
-// (it changed since its size was taken), where a read fails, and where !kReadsInPieces.
-bool read_in_pieces(std::FILE* in, std::size_t size, unsigned threads, char* bytes);
+// The file open as `in`, of `size` bytes when its size was taken. Every read is at an
+// offset of its own, so the handle's position stays where it was, and every read is
+// from that one file, even where another is renamed over its name meanwhile. A read
+// that fails or comes short (the file changed) makes the call return false or nullopt.
+class FileAt {
+public:
+    // The bytes in a chunk (a line longer than this grows the buffer to hold it).
+    static constexpr std::size_t kChunkBytes = std::size_t{256} << 10;
+
+    FileAt(std::FILE* in, std::size_t size);
+    std::size_t size() const { return size_; }
+
+    // Bytes [offset, offset + n) into out.
+    bool read(std::size_t offset, std::size_t n, char* out) const;
+    // Where the line after the first LF at or after `at` starts (size() if none).
+    std::optional<std::size_t> after_line_feed(std::size_t at) const;
+    // Bytes [first, end) as chunks of whole lines, in order: lines(chunk) for each, the
+    // bytes read into buffer (reused). A chunk ends after a line end (LF, or CR before
+    // another byte than LF) or at end.
+    bool read_lines(std::size_t first, std::size_t end, std::vector<char>& buffer,
+                    const std::function<void(std::string_view)>& lines) const;
+    // Whether nothing follows size() bytes (the file has not grown).
+    bool ends_at_size() const;
+
+private:
+    int fd_ = -1;
+    std::size_t size_ = 0;
+};
 
 }  // namespace rt

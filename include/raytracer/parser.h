@@ -3,9 +3,11 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <string_view>
 
+#include "raytracer/file_pieces.h"
 #include "raytracer/scene.h"
 
 namespace rt {
@@ -27,6 +29,22 @@ inline constexpr std::size_t kMaxSceneFileBytes = std::size_t{64} << 20;
 // start than it saves.
 inline constexpr std::size_t kParsePieceBytes = std::size_t{256} << 10;
 Scene parse_scene(std::string_view text, const std::string& file_name, unsigned threads = 1);
+
+// The same for a scene file read as it is parsed, a chunk of whole lines at a time by
+// the thread that parses it (file_pieces.h), for files too large to copy whole (and
+// refused as load_scene() refuses an empty or UTF-16 text); nullopt where a read fails
+// or comes short, or the file has grown: it changed while read.
+std::optional<Scene> parse_scene_file(const FileAt& file, const std::string& file_name, unsigned threads);
+
+// What load_scene() and parse_scene_file() say of a text that is not a scene's: an
+// empty one (spaces, tabs, line ends) and a UTF-16 one (Windows editors may save it,
+// its ASCII letters with NUL bytes between). A UTF-8 byte-order mark is skipped.
+inline constexpr const char* kEmptyFile = "is empty, expected a scene file";
+inline constexpr const char* kUtf16Text = "is UTF-16 text, expected ASCII or UTF-8 text";
+inline constexpr std::string_view kUtf8Mark = "\xEF\xBB\xBF";
+inline bool is_utf16(std::string_view text) {
+    return text.rfind("\xFF\xFE", 0) == 0 || text.rfind("\xFE\xFF", 0) == 0;
+}
 
 // Reads and parses a scene file, on as many threads as there are cores. Refuses what is not a scene file at
 // all (missing, unreadable, a directory, empty, binary) with a SceneError that has no line.
