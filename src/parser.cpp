@@ -124,7 +124,7 @@ struct Piece {
 };
 
 // Where the text of `size` bytes is cut for `threads` threads: each piece ends with
-// the first LF at or after its bound (a CR LF is never cut), found by line_end(at): a
+// the first LF at or after its bound (a CR LF is never cut), after_line_feed(bound): a
 // first piece of 1/threads of the text, which this thread takes first, then pieces of
 // a quarter of that (at least kParsePieceBytes), taken by whichever thread is free: a
 // helper that starts late or runs slowly (its core shared) then holds up the merge by
@@ -142,7 +142,7 @@ std::vector<std::size_t> cut(std::size_t size, unsigned threads, AfterLineFeed a
 }
 
 // The pieces parsed: the first on this thread, then each by whichever thread is free,
-// the spheres of all but the first into its threads' lists (one a thread).
+// the spheres of all but the first into their threads' lists (one per thread).
 void parse_all(std::vector<Piece>& parts, std::vector<PieceThread>& threads) {
     std::atomic<std::size_t> next{1}, next_thread{0};
     // From piece k on, then each next piece left.
