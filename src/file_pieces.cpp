@@ -40,7 +40,7 @@ bool FileAt::ends_at_size() const {
 #endif
 
 std::optional<std::size_t> FileAt::after_line_feed(std::size_t at) const {
-    char window[512];
+    char window[1 << 14];
     for (; at < size_; at += sizeof window) {
         const std::size_t n = std::min(sizeof window, size_ - at);
         if (!read(at, n, window)) return std::nullopt;
@@ -52,16 +52,19 @@ std::optional<std::size_t> FileAt::after_line_feed(std::size_t at) const {
 
 bool FileAt::read_lines(std::size_t first, std::size_t end, std::vector<char>& buffer,
                         const std::function<void(std::string_view)>& lines) const {
-    std::size_t held = 0;  // bytes of a line begun in the chunk before
+    std::size_t held = 0;  // bytes of a line begun in the chunks before
     for (std::size_t at = first; at < end;) {
         const std::size_t n = std::min(kChunkBytes, end - at);
         if (buffer.size() < held + n) buffer.resize(held + n);
         if (!read(at, n, buffer.data() + held)) return false;
+        const std::size_t before = held;
         at += n, held += n;
         // Whole lines: up to the last line end whose line is known to end there (a CR
-        // as the last byte read may be the first of a CR LF).
+        // as the last byte read may be the first of a CR LF). The bytes held before
+        // hold no line end but that CR: only the new ones and it are looked at, so a
+        // line of L bytes costs L, not L^2 / kChunkBytes.
         std::size_t whole = at == end ? held : 0;
-        for (std::size_t i = held; whole == 0 && i > 0; --i) {
+        for (std::size_t i = held; whole == 0 && i > 0 && i >= before; --i) {
             const char c = buffer[i - 1];
             if (c == '\n' || (c == '\r' && i < held)) whole = i;
         }

@@ -158,24 +158,36 @@ void parse_all(std::vector<Piece>& parts, std::vector<PieceThread>& threads) {
 }
 
 // The pieces [starts[k], starts[k + 1]) of a text of starts.back() bytes, for
-// parse_all(), each with its list's reserve_for.
-std::vector<Piece> pieces_of(const std::vector<std::size_t>& starts) {
+// parse_all() on `threads` threads, each with its list's reserve_for: the whole text for
+// the first piece; for the others, the rest of the text shared by the threads that
+// parse it (all of them but the one that starts with the first piece, which may join).
+std::vector<Piece> pieces_of(const std::vector<std::size_t>& starts, std::size_t threads) {
     std::vector<Piece> parts(starts.size() - 1);
     for (std::size_t k = 0; k < parts.size(); ++k)
-        parts[k].reserve_for = k == 0 ? starts.back() : starts.back() - starts[1];
+        parts[k].reserve_for =
+            k == 0 ? starts.back() : (starts.back() - starts[1]) / std::max<std::size_t>(threads - 1, 1);
     return parts;
 }
 
 // The pieces in file order into one scene: each piece's statements that must occur once,
 // which all came before its first mistake, then that mistake, then its spheres and
 // lights, their lines counted on from the pieces before (the first piece's lists taken
-// as they are: no copy). A mistake is thrown as file_name's SceneError.
+// as they are: no copy; a thread's list freed after its last piece, for a lower peak).
+// A mistake is thrown as file_name's SceneError.
 Scene merge(std::vector<Piece>& pieces, const std::string& file_name) {
+    std::vector<bool> last_of_list(pieces.size());
+    std::vector<const std::vector<SphereSpec>*> seen;
+    for (std::size_t k = pieces.size(); k-- > 1;) {
+        const std::vector<SphereSpec>* list = pieces[k].spheres;
+        last_of_list[k] = list != nullptr && std::find(seen.begin(), seen.end(), list) == seen.end();
+        if (last_of_list[k]) seen.push_back(list);
+    }
     SceneBuilder all;
     int offset = 0;
     std::vector<std::string_view> tokens;
     try {
-        for (Piece& p : pieces) {
+        for (std::size_t k = 0; k < pieces.size(); ++k) {
+            Piece& p = pieces[k];
             for (const auto& [line, text] : p.once) {
                 split_line(text, tokens);
                 all.statement(statement_of(tokens[0], offset + line), tokens, offset + line);
@@ -183,13 +195,14 @@ Scene merge(std::vector<Piece>& pieces, const std::string& file_name) {
             if (p.failure) fail(offset + p.failure->line, p.failure->what);
             if (p.exception) std::rethrow_exception(p.exception);
             Scene& s = p.spheres_and_lights.scene;
-            if (&p == &pieces.front()) {
+            if (k == 0) {
                 all.scene.spheres = std::move(s.spheres), all.scene.lights = std::move(s.lights);
             } else {
                 for (std::size_t i = p.spheres_from; i < p.spheres_to; ++i) {
                     all.scene.spheres.push_back(std::move((*p.spheres)[i]));
                     all.scene.spheres.back().line += offset;
                 }
+                if (last_of_list[k]) std::vector<SphereSpec>().swap(*p.spheres);
                 for (LightSpec& light : s.lights)
                     light.line += offset, all.scene.lights.push_back(std::move(light));
             }
@@ -211,10 +224,10 @@ Scene parse_scene(std::string_view text, const std::string& file_name, unsigned 
         const std::size_t lf = text.find('\n', at);
         return lf == std::string_view::npos ? text.size() : lf + 1;
     });
-    std::vector<Piece> parts = pieces_of(starts);
+    std::vector<PieceThread> lists(std::min<std::size_t>(std::max(threads, 1U), starts.size() - 1));
+    std::vector<Piece> parts = pieces_of(starts, lists.size());
     for (std::size_t k = 0; k < parts.size(); ++k)
         parts[k].text = text.substr(starts[k], starts[k + 1] - starts[k]);
-    std::vector<PieceThread> lists(std::min<std::size_t>(std::max(threads, 1U), parts.size()));
     parse_all(parts, lists);
     return merge(parts, file_name);
 }
@@ -232,11 +245,11 @@ std::optional<Scene> parse_scene_file(const FileAt& file, const std::string& fil
         return next.value_or(file.size());
     });
     if (unread) return std::nullopt;
-    std::vector<Piece> parts = pieces_of(starts);
+    std::vector<PieceThread> lists(std::min<std::size_t>(std::max(threads, 1U), starts.size() - 1));
+    std::vector<Piece> parts = pieces_of(starts, lists.size());
     for (std::size_t k = 0; k < parts.size(); ++k)
         parts[k].file = &file, parts[k].first = starts[k], parts[k].end = starts[k + 1];
     if (utf8_mark) parts[0].first = std::min<std::size_t>(3, starts[1]);  // not part of the scene
-    std::vector<PieceThread> lists(std::min<std::size_t>(std::max(threads, 1U), parts.size()));
     parse_all(parts, lists);
     bool any_token = utf8_mark;  // a mark alone is not an empty file, as in load_scene()
     for (const Piece& p : parts) unread = unread || p.unread, any_token = any_token || p.any_token;

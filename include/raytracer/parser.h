@@ -33,7 +33,8 @@ Scene parse_scene(std::string_view text, const std::string& file_name, unsigned 
 // The same for a scene file read as it is parsed, a chunk of whole lines at a time by
 // the thread that parses it (file_pieces.h), for files too large to copy whole (and
 // refused as load_scene() refuses an empty or UTF-16 text); nullopt where a read fails
-// or comes short, or the file has grown: it changed while read.
+// or comes short, or the file has grown: it changed while read. (A mistake found in
+// bytes read before it changed is reported as such: the pieces stop at their first.)
 std::optional<Scene> parse_scene_file(const FileAt& file, const std::string& file_name, unsigned threads);
 
 // What load_scene() and parse_scene_file() say of a text that is not a scene's: an
