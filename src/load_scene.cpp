@@ -8,7 +8,6 @@
 #include <memory>
 #include <optional>
 #include <string>
-#include <string_view>
 
 #include "raytracer/file_pieces.h"
 #include "raytracer/helper_pool.h"
