@@ -3,13 +3,16 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <initializer_list>
 #include <limits>
 #include <random>
 
 #include "check.h"
 #include "raytracer/image.h"
+#include "raytracer/lanes.h"
 #include "raytracer/reference/brute_force.h"
 #include "raytracer/reference/power.h"
+#include "raytracer/reference/shading.h"
 #include "raytracer/reference/whitted.h"
 
 namespace {
@@ -206,4 +209,40 @@ TEST(whole_powers_are_within_n_ulps_of_the_exact_power) {
         }
     CHECK(worst <= 1.0);
     CHECK(worst > 0);  // not vacuous: some powers do carry rounding
+}
+
+// A tile's Finish knows the exponent its lanes share only after share_exponent(), and
+// only where every lane has it (set_lane() forgets it); add_light() gives each lane the
+// same bits whether it runs one loop for the shared exponent or a mask per lane.
+TEST(a_shared_exponent_is_known_only_where_every_lane_has_it) {
+    using Q = rt::Lanes<double, 4>;
+    auto finish = [](std::initializer_list<double> shininess) {
+        rt::Finish<Q> f{};
+        int k = 0;
+        for (double n : shininess) {
+            const rt::SphereSpec s = sphere({0, 0, -5}, 1, {0.5, 0.6, 0.7}, 0.1, 0.5, 0.8, 0, n);
+            rt::set_lane(f, k++, rt::finish_of(rt::make_ellipsoid<double>(s)));
+        }
+        return f;
+    };
+    rt::Finish<Q> same = finish({20, 20, 20, 20}), mixed = finish({20, 20, 50, 20}),
+                  fractional = finish({2.5, 2.5, 2.5, 2.5});
+    CHECK_EQ(same.shared_exponent, -1);  // not yet found
+    rt::share_exponent(same), rt::share_exponent(mixed), rt::share_exponent(fractional);
+    CHECK_EQ(same.shared_exponent, 20);
+    CHECK_EQ(mixed.shared_exponent, -1);
+    CHECK_EQ(fractional.shared_exponent, -1);
+    // Lanes of one surface point and light: R.V = 0.8 in each (R = (0.6, 0, 0.8)).
+    rt::SurfacePoint<Q> s;
+    s.normal = rt::Vec3<Q>::from(V{0, 0, 1}), s.to_viewer = rt::Vec3<Q>::from(V{0, 0, 1});
+    rt::LightRay<Q> r;
+    r.l = rt::Vec3<Q>::from(V{-0.6, 0, 0.8}), r.n_dot_l = Q(0.8);
+    const rt::Vec3<Q> intensity = rt::Vec3<Q>::from(V{1, 1, 1});
+    rt::Finish<Q> unshared = same;
+    unshared.shared_exponent = -1;
+    rt::Vec3<Q> a = rt::Vec3<Q>::from(V{0, 0, 0}), b = a;
+    rt::add_light(a, s, r, intensity, same, rt::LaneBits(0xF));
+    rt::add_light(b, s, r, intensity, unshared, rt::LaneBits(0xF));
+    for (int k = 0; k < 4; ++k) CHECK(a.x[k] == b.x[k] && a.y[k] == b.y[k] && a.z[k] == b.z[k]);
+    CHECK(a.x[0] > 0.5 * 0.5 * 0.8);  // the specular term was added
 }

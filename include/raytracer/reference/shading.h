@@ -27,9 +27,9 @@ struct Finish {
     Vec3<T> colour;         // O
     T kd, ks, shininess;    // Kd, Ks, n
     IntegerOf<T> exponent;  // whole_exponent(n): -1 where pow() is needed
-    // The exponent of every lane where all lanes have the same whole one, else -1 (for
-    // one ray, exponent): one loop of scalar tests for all lanes, where a lane's own
-    // exponent takes a mask per step (power.h).
+    // The whole exponent that every lane has, where known (for one ray, exponent), else
+    // -1. Known, one loop of scalar tests serves all lanes; else each lane's own
+    // exponent takes a mask a step (power.h).
     std::int32_t shared_exponent;
     MaskOf<T> specular;  // not specular_is_zero(): a specular term may show
 };
@@ -41,12 +41,13 @@ Finish<Real> finish_of(const Ellipsoid<Real>& e) {
     return {e.colour, e.kd, e.ks, e.shininess, k, k, !specular_is_zero(e)};
 }
 
-// Lane k of a tile's Finish; its shared_exponent is share_exponent()'s, once every lane
-// is set.
+// Lane k of a tile's Finish; its shared_exponent unknown (-1) until share_exponent()
+// finds it, once every lane is set.
 template <int N, typename Real>
 void set_lane(Finish<Lanes<Real, N>>& lanes, int k, const Finish<Real>& f) {
     set_lane(lanes.colour, k, f.colour);
     lanes.kd[k] = f.kd, lanes.ks[k] = f.ks, lanes.shininess[k] = f.shininess, lanes.exponent[k] = f.exponent;
+    lanes.shared_exponent = -1;
     lanes.specular = (lanes.specular & ~kLaneBits<N>.bit[k]) | (f.specular ? kLaneBits<N>.bit[k] : 0);
 }
 
