@@ -421,7 +421,7 @@ TEST(file_at_reads_whole_lines_in_order) {
             whole = whole && (chunk_end == end || last == '\n' || (last == '\r' && bytes[chunk_end] != '\n'));
             got += chunk;
         });
-        CHECK_EQ(read, rt::kReadsInPieces);
+        CHECK_EQ(read, rt::kReadsInPieces || first == end);  // nothing to read: nothing fails
         if (!rt::kReadsInPieces) continue;
         CHECK(whole);
         CHECK(got == bytes.substr(first, end - first));
