@@ -141,32 +141,40 @@ std::vector<std::size_t> cut(std::size_t size, unsigned threads, AfterLineFeed a
     }
 }
 
+// The pieces [starts[k], starts[k + 1]) of a text of starts.back() bytes, and the
+// threads that parse them (at most one a piece), each piece with its list's
+// reserve_for: the whole text for the first piece; for the others, the rest of the text
+// shared by the threads that parse it (all of them but the one that starts with the
+// first piece, which may join).
+struct Pieces {
+    std::vector<Piece> parts;
+    std::vector<PieceThread> threads;
+};
+Pieces pieces_of(const std::vector<std::size_t>& starts, unsigned threads) {
+    Pieces pieces{std::vector<Piece>(starts.size() - 1),
+                  std::vector<PieceThread>(std::min<std::size_t>(std::max(threads, 1U), starts.size() - 1))};
+    const std::size_t rest =
+        (starts.back() - starts[1]) / std::max<std::size_t>(pieces.threads.size() - 1, 1);
+    for (std::size_t k = 0; k < pieces.parts.size(); ++k)
+        pieces.parts[k].reserve_for = k == 0 ? starts.back() : rest;
+    return pieces;
+}
+
 // The pieces parsed: the first on this thread, then each by whichever thread is free,
 // the spheres of all but the first into their threads' lists (one per thread).
-void parse_all(std::vector<Piece>& parts, std::vector<PieceThread>& threads) {
+void parse_all(Pieces& pieces) {
+    std::vector<Piece>& parts = pieces.parts;
     std::atomic<std::size_t> next{1}, next_thread{0};
     // From piece k on, then each next piece left.
     auto parse_pieces = [&](std::size_t k) {
-        PieceThread& thread = threads[next_thread++];
+        PieceThread& thread = pieces.threads[next_thread++];
         for (; k < parts.size(); k = next++) parts[k].parse(thread, k == 0);
     };
     auto helper = [&] { parse_pieces(next++); };
     HelperPool::Job helpers;
-    if (parts.size() > 1) helpers.start(static_cast<unsigned>(threads.size()) - 1, helper);
+    if (parts.size() > 1) helpers.start(static_cast<unsigned>(pieces.threads.size()) - 1, helper);
     parse_pieces(0);
     helpers.finish();
-}
-
-// The pieces [starts[k], starts[k + 1]) of a text of starts.back() bytes, for
-// parse_all() on `threads` threads, each with its list's reserve_for: the whole text for
-// the first piece; for the others, the rest of the text shared by the threads that
-// parse it (all of them but the one that starts with the first piece, which may join).
-std::vector<Piece> pieces_of(const std::vector<std::size_t>& starts, std::size_t threads) {
-    std::vector<Piece> parts(starts.size() - 1);
-    for (std::size_t k = 0; k < parts.size(); ++k)
-        parts[k].reserve_for =
-            k == 0 ? starts.back() : (starts.back() - starts[1]) / std::max<std::size_t>(threads - 1, 1);
-    return parts;
 }
 
 // The pieces in file order into one scene: each piece's statements that must occur once,
@@ -224,12 +232,11 @@ Scene parse_scene(std::string_view text, const std::string& file_name, unsigned 
         const std::size_t lf = text.find('\n', at);
         return lf == std::string_view::npos ? text.size() : lf + 1;
     });
-    std::vector<PieceThread> lists(std::min<std::size_t>(std::max(threads, 1U), starts.size() - 1));
-    std::vector<Piece> parts = pieces_of(starts, lists.size());
-    for (std::size_t k = 0; k < parts.size(); ++k)
-        parts[k].text = text.substr(starts[k], starts[k + 1] - starts[k]);
-    parse_all(parts, lists);
-    return merge(parts, file_name);
+    Pieces pieces = pieces_of(starts, threads);
+    for (std::size_t k = 0; k < pieces.parts.size(); ++k)
+        pieces.parts[k].text = text.substr(starts[k], starts[k + 1] - starts[k]);
+    parse_all(pieces);
+    return merge(pieces.parts, file_name);
 }
 
 std::optional<Scene> parse_scene_file(const FileAt& file, const std::string& file_name, unsigned threads) {
@@ -245,12 +252,12 @@ std::optional<Scene> parse_scene_file(const FileAt& file, const std::string& fil
         return next.value_or(file.size());
     });
     if (unread) return std::nullopt;
-    std::vector<PieceThread> lists(std::min<std::size_t>(std::max(threads, 1U), starts.size() - 1));
-    std::vector<Piece> parts = pieces_of(starts, lists.size());
+    Pieces pieces = pieces_of(starts, threads);
+    std::vector<Piece>& parts = pieces.parts;
     for (std::size_t k = 0; k < parts.size(); ++k)
         parts[k].file = &file, parts[k].first = starts[k], parts[k].end = starts[k + 1];
     if (utf8_mark) parts[0].first = std::min<std::size_t>(3, starts[1]);  // not part of the scene
-    parse_all(parts, lists);
+    parse_all(pieces);
     bool any_token = utf8_mark;  // a mark alone is not an empty file, as in load_scene()
     for (const Piece& p : parts) unread = unread || p.unread, any_token = any_token || p.any_token;
     if (unread || !file.ends_at_size()) return std::nullopt;
