@@ -258,8 +258,11 @@ std::optional<Scene> parse_scene_file(const FileAt& file, const std::string& fil
         parts[k].file = &file, parts[k].first = starts[k], parts[k].end = starts[k + 1];
     if (utf8_mark) parts[0].first = std::min<std::size_t>(3, starts[1]);  // not part of the scene
     parse_all(pieces);
-    bool any_token = utf8_mark;  // a mark alone is not an empty file, as in load_scene()
-    for (const Piece& p : parts) unread = unread || p.unread, any_token = any_token || p.any_token;
+    // A mark alone is not an empty file, as in load_scene(); nor is one whose pieces all
+    // ran out of memory before their first token (the merge throws that).
+    bool any_token = utf8_mark;
+    for (const Piece& p : parts)
+        unread = unread || p.unread, any_token = any_token || p.any_token || p.exception != nullptr;
     if (unread || !file.ends_at_size()) return std::nullopt;
     if (!any_token) throw SceneError(file_name, 0, kEmptyFile);
     return merge(parts, file_name);

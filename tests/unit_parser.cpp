@@ -15,6 +15,11 @@
 #include <utility>
 #include <vector>
 
+#ifdef __linux__
+#include <sys/resource.h>
+#include <unistd.h>
+#endif
+
 #include "check.h"
 #include "raytracer/file_pieces.h"
 #include "raytracer/parser.h"
@@ -514,6 +519,39 @@ TEST(a_large_file_reads_as_its_text) {
     }
     CHECK(contains(message, ":" + std::to_string(lines.size()) + ": error: OUTPUT has 0 fields"));
 }
+
+// A file whose sphere list cannot be had is out of memory, not "empty": its pieces ran out
+// before their first token. The address space is held to a few MiB above what the process
+// maps (Linux; the sanitizers map terabytes), on one thread (no helper's stack to map).
+#if defined(__linux__) && !defined(__SANITIZE_ADDRESS__)
+TEST(a_file_read_out_of_memory_is_not_empty) {
+    // Its list would take about 45 MB: more than earlier tests can have left free in the heap.
+    const std::string text = joined(many_lines(260000));
+    const TempFile file(text);
+    const std::unique_ptr<std::FILE, int (*)(std::FILE*)> in(std::fopen(file.path.string().c_str(), "rb"),
+                                                             &std::fclose);
+    CHECK(in != nullptr);
+    if (!in || !rt::kReadsInPieces) return;
+    long pages = 0;
+    std::ifstream("/proc/self/statm") >> pages;  // the address space mapped, in pages
+    rlimit was{};
+    CHECK_EQ(getrlimit(RLIMIT_AS, &was), 0);
+    const auto mapped = static_cast<rlim_t>(pages) * static_cast<rlim_t>(sysconf(_SC_PAGESIZE));
+    const rlimit held{mapped + (rlim_t{4} << 20), was.rlim_max};
+    CHECK(held.rlim_cur < was.rlim_cur);
+    std::string outcome = "parsed";
+    CHECK_EQ(setrlimit(RLIMIT_AS, &held), 0);
+    try {
+        (void)rt::parse_scene_file(rt::FileAt(in.get(), text.size()), "big.txt", 1);
+    } catch (const std::bad_alloc&) {
+        outcome = "out of memory";
+    } catch (const rt::SceneError& e) {
+        outcome = e.what();
+    }
+    CHECK_EQ(setrlimit(RLIMIT_AS, &was), 0);
+    CHECK_EQ(outcome, std::string("out of memory"));
+}
+#endif
 
 // split_line() (scene_lines.h) against a byte-by-byte reading of SPEC section 2, on
 // random lines of every byte value: tokens of every length about the eight-byte words
