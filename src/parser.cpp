@@ -42,7 +42,7 @@ constexpr std::size_t kShortestSphereLine = 36;
 struct PieceThread {
     std::vector<char> buffer;              // a file's chunk (file_pieces.h)
     std::vector<std::string_view> tokens;  // of the current line
-    std::vector<SphereSpec> spheres;
+    LargeVector<SphereSpec> spheres;
 };
 
 // A piece of the text, from a line's start to the next piece's, parsed on its own: its
@@ -59,7 +59,7 @@ struct Piece {
     std::size_t reserve_for = 0;
     SceneBuilder spheres_and_lights;  // its lights, and the first piece's spheres
     // The other pieces' spheres: [spheres_from, spheres_to) of their thread's list.
-    std::vector<SphereSpec>* spheres = nullptr;
+    LargeVector<SphereSpec>* spheres = nullptr;
     std::size_t spheres_from = 0, spheres_to = 0;
     std::vector<std::pair<int, std::string>> once;  // each such line and its number
     int lines = 0;
@@ -69,7 +69,7 @@ struct Piece {
     std::exception_ptr exception;    // anything else (out of memory), rethrown in the merge
 
     void parse(PieceThread& thread, bool first_piece) {
-        std::vector<SphereSpec>& list = spheres_and_lights.scene.spheres;
+        LargeVector<SphereSpec>& list = spheres_and_lights.scene.spheres;
         if (!first_piece) list.swap(thread.spheres), spheres = &thread.spheres, spheres_from = list.size();
         try {
             auto whole_lines = [&](std::string_view chunk) {
@@ -109,7 +109,7 @@ struct Piece {
     // text not being at hand for a file), scaled to reserve_for bytes, and an eighth
     // more; a list that outgrows it is copied, as any vector. (Reserved for the most
     // those bytes can hold, kShortestSphereLine, it took 4 times the address space.)
-    void reserve(std::vector<SphereSpec>& list, std::string_view sample) const {
+    void reserve(LargeVector<SphereSpec>& list, std::string_view sample) const {
         sample = sample.substr(0, FileAt::kChunkBytes);
         std::size_t spheres = 0;
         for (std::size_t at = sample.find("SPHERE"); at != std::string_view::npos;
@@ -119,7 +119,7 @@ struct Piece {
             const double scaled = double(spheres) * (double(reserve_for) / double(sample.size())) * 1.125;
             spheres = std::min(reserve_for / kShortestSphereLine + 1, static_cast<std::size_t>(scaled));
         }
-        reserve_large(list, spheres);
+        list.reserve(spheres);
     }
 };
 
@@ -184,9 +184,9 @@ void parse_all(Pieces& pieces) {
 // A mistake is thrown as file_name's SceneError.
 Scene merge(std::vector<Piece>& pieces, const std::string& file_name) {
     std::vector<bool> last_of_list(pieces.size());
-    std::vector<const std::vector<SphereSpec>*> seen;
+    std::vector<const LargeVector<SphereSpec>*> seen;
     for (std::size_t k = pieces.size(); k-- > 1;) {
-        const std::vector<SphereSpec>* list = pieces[k].spheres;
+        const LargeVector<SphereSpec>* list = pieces[k].spheres;
         last_of_list[k] = list != nullptr && std::find(seen.begin(), seen.end(), list) == seen.end();
         if (last_of_list[k]) seen.push_back(list);
     }
@@ -210,7 +210,7 @@ Scene merge(std::vector<Piece>& pieces, const std::string& file_name) {
                     all.scene.spheres.push_back(std::move((*p.spheres)[i]));
                     all.scene.spheres.back().line += offset;
                 }
-                if (last_of_list[k]) std::vector<SphereSpec>().swap(*p.spheres);
+                if (last_of_list[k]) LargeVector<SphereSpec>().swap(*p.spheres);
                 for (LightSpec& light : s.lights)
                     light.line += offset, all.scene.lights.push_back(std::move(light));
             }

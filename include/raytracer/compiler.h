@@ -21,3 +21,14 @@
 #else
 #define RT_VECTOR_LOOP
 #endif
+
+// Defined where AddressSanitizer instruments the build (GCC's macro, Clang's feature
+// test): the sanitizers map terabytes of address space, and their checks cover only
+// memory from the heap.
+#if defined(__SANITIZE_ADDRESS__)
+#define RT_UNDER_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define RT_UNDER_ASAN 1
+#endif
+#endif

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "raytracer/large_pages.h"
 #include "raytracer/vec3.h"
 
 namespace rt {
@@ -31,7 +32,7 @@ struct LightSpec {
 struct Scene {
     double near_plane = 0, left = 0, right = 0, bottom = 0, top = 0;
     int columns = 0, rows = 0;
-    std::vector<SphereSpec> spheres;
+    LargeVector<SphereSpec> spheres;  // 100,000 take 15 MB
     std::vector<LightSpec> lights;
     Colour background;
     Colour ambient;

@@ -241,7 +241,7 @@ TEST(bvh_built_on_two_threads_is_the_same_tree) {
 
 // The items below a wide tree's child, each leaf's marked in seen; -1 where a wide node
 // other than the root holds at most kSmallSubtree items (it should be a leaf).
-int items_below(const std::vector<rt::WideNode<double, 8>>& nodes, rt::WideChild child, bool root,
+int items_below(const rt::LargeVector<rt::WideNode<double, 8>>& nodes, rt::WideChild child, bool root,
                 std::vector<int>& seen) {
     if (child.count > 0) {
         for (std::uint32_t i = child.first; i < child.first + child.count; ++i) ++seen[i];
@@ -263,11 +263,11 @@ int items_below(const std::vector<rt::WideNode<double, 8>>& nodes, rt::WideChild
 TEST(bvh_collapse_keeps_every_item_and_no_small_node) {
     const rt::Scene scene = scale::random_ellipsoids(20000);
     const std::vector<rt::Ellipsoid<double>> all = rt::make_ellipsoids<double>(scene);
-    std::vector<rt::BuildItem<double>> items(all.size());
+    rt::LargeVector<rt::BuildItem<double>> items(all.size());
     for (std::size_t i = 0; i < all.size(); ++i)
         items[i] = rt::build_item<double>(all[i], static_cast<std::uint32_t>(i));
-    const std::vector<rt::BuildNode<double>> binary = rt::BinaryTreeBuilder<double>().build(items);
-    std::vector<rt::WideNode<double, 8>> nodes;
+    const rt::LargeVector<rt::BuildNode<double>> binary = rt::BinaryTreeBuilder<double>().build(items);
+    rt::LargeVector<rt::WideNode<double, 8>> nodes;
     const rt::WideChild root = rt::collapse<8>(binary, nodes);
     std::vector<int> seen(all.size());
     CHECK_EQ(items_below(nodes, root, true, seen), static_cast<int>(all.size()));

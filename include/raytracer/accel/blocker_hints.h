@@ -2,12 +2,11 @@
 // ellipsoid that last blocked a shadow ray from that ellipsoid's surface to that light.
 #pragma once
 
-#include <algorithm>
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
-#include <memory>
 
+#include "raytracer/large_pages.h"
 #include "raytracer/reference/spec_rules.h"
 
 namespace rt {
@@ -26,13 +25,9 @@ class BlockerHints {
 public:
     static constexpr std::size_t kMaxSlots = std::size_t{1} << 20;  // 4 MiB
 
-    BlockerHints(std::size_t ellipsoids, std::size_t lights) : lights_(lights) {
-        const std::size_t pairs = std::max<std::size_t>(ellipsoids * lights, 1);
-        std::size_t slots = 1;
-        while (slots < pairs && slots < kMaxSlots) slots *= 2;
-        mask_ = slots - 1;
-        slots_ = std::make_unique<std::atomic<std::uint32_t>[]>(slots);
-        for (std::size_t s = 0; s < slots; ++s) slots_[s].store(kNoBlocker, std::memory_order_relaxed);
+    BlockerHints(std::size_t ellipsoids, std::size_t lights)
+        : lights_(lights), slots_(slot_count(ellipsoids * lights)), mask_(slots_.size() - 1) {
+        for (auto& s : slots_) s.store(kNoBlocker, std::memory_order_relaxed);
     }
 
     std::uint32_t load(std::uint32_t ellipsoid, std::size_t light) const {
@@ -45,12 +40,19 @@ public:
     }
 
 private:
+    // A power of two: a slot per pair, up to kMaxSlots.
+    static std::size_t slot_count(std::size_t pairs) {
+        std::size_t slots = 1;
+        while (slots < pairs && slots < kMaxSlots) slots *= 2;
+        return slots;
+    }
     std::atomic<std::uint32_t>& slot(std::uint32_t ellipsoid, std::size_t light) const {
         return slots_[(std::size_t{ellipsoid} * lights_ + light) & mask_];
     }
 
-    std::size_t lights_, mask_ = 0;
-    std::unique_ptr<std::atomic<std::uint32_t>[]> slots_;
+    std::size_t lights_;
+    mutable LargeVector<std::atomic<std::uint32_t>> slots_;
+    std::size_t mask_;  // slots_.size() - 1
 };
 
 }  // namespace rt

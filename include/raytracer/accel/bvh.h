@@ -338,14 +338,14 @@ private:
     template <bool kNearestFirst, bool kGuarded, typename Leaf>
     void traverse(const SlabRay<C>& ray, C t1, Leaf leaf) const;
 
-    std::vector<Node> nodes_;
+    LargeVector<Node> nodes_;
     Child root_{0, 0};
     BuildBox<C> bounds_{};                 // of every box
     C guard_ = 0;                          // the smallest guard
     C least_direction_ = 0;                // make_slab_ray()'s least
-    std::vector<Ellipsoid<Real>> items_;   // in leaf order
-    std::vector<std::uint32_t> index_;     // items_[k] is the ellipsoid index_[k] of the scene
-    std::vector<std::uint32_t> position_;  // and ellipsoid i is items_[position_[i]]
+    LargeVector<Ellipsoid<Real>> items_;   // in leaf order
+    LargeVector<std::uint32_t> index_;     // items_[k] is the ellipsoid index_[k] of the scene
+    LargeVector<std::uint32_t> position_;  // and ellipsoid i is items_[position_[i]]
 };
 
 template <typename Real, int Width>
@@ -361,25 +361,22 @@ Bvh<Real, Width>::Bvh(std::size_t count, EllipsoidOf ellipsoid_of, unsigned thre
     };
     // The items, halves on two threads (their fresh pages' first touch is most of it:
     // random 10k read and prepared 9.0 -> 8.0 ms).
-    std::vector<BuildItem<C>> items;
-    reserve_large(items, count);
-    items.resize(count);
+    LargeVector<BuildItem<C>> items(count);
     auto make_items = [&](std::size_t first, std::size_t last) {
         for (std::size_t i = first; i < last; ++i)
             items[i] = build_item<C>(ellipsoid_of(i), static_cast<std::uint32_t>(i));
     };
     both([&] { make_items(count / 2, count); }, [&] { make_items(0, count / 2); });
-    const std::vector<BuildNode<C>> binary = BinaryTreeBuilder<C>().build(items, threads);
-    reserve_large(index_, count), reserve_large(position_, count);
+    const LargeVector<BuildNode<C>> binary = BinaryTreeBuilder<C>().build(items, threads);
     index_.resize(count), position_.resize(count);
     for (std::uint32_t k = 0; k < items.size(); ++k)
         index_[k] = items[k].index, position_[items[k].index] = k;
-    std::vector<BuildItem<C>>().swap(items);  // not needed past this: a lower peak
+    LargeVector<BuildItem<C>>().swap(items);  // not needed past this: a lower peak
     if (binary.empty()) return;
     bounds_ = binary[0].box, guard_ = binary[0].guard;
     // The ellipsoids in leaf order beside the collapse.
     auto in_leaf_order = [&] {
-        reserve_large(items_, count);
+        items_.reserve(count);
         C largest = 0;  // scale
         for (const std::uint32_t i : index_) {
             items_.push_back(ellipsoid_of(i));

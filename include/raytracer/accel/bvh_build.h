@@ -13,7 +13,6 @@
 #include <cstdint>
 #include <limits>
 #include <utility>
-#include <vector>
 
 #include "raytracer/accel/run_beside.h"
 #include "raytracer/large_pages.h"
@@ -75,18 +74,18 @@ public:
     static constexpr std::size_t kItemsPerThread = 2000, kBalance = 3;
 
     // Reorders items into leaf order; nodes[0] is the root.
-    std::vector<BuildNode<C>> build(std::vector<BuildItem<C>>& items, unsigned threads = 1) {
+    LargeVector<BuildNode<C>> build(LargeVector<BuildItem<C>>& items, unsigned threads = 1) {
         threads_ = threads;
         nodes_.clear();
         if (items.empty()) return nodes_;
-        reserve_large(nodes_, 2 * items.size());
+        nodes_.reserve(2 * items.size());
         nodes_.emplace_back();
         grow(items, 0, 0, items.size(), 0);
         return std::move(nodes_);
     }
 
 private:
-    void grow(std::vector<BuildItem<C>>& items, std::size_t node, std::size_t first, std::size_t last,
+    void grow(LargeVector<BuildItem<C>>& items, std::size_t node, std::size_t first, std::size_t last,
               int depth) {
         // The node's box and guard, and the box of the items' centres, in one pass.
         BuildNode<C> n;
@@ -128,11 +127,11 @@ private:
     // The two halves of a node: [first, middle) here, [middle, last) on another thread
     // into a list of its own, which then follows this one's, as it would have. Only once:
     // below it each thread builds alone.
-    void grow_beside(std::vector<BuildItem<C>>& items, std::uint32_t children, std::size_t first,
+    void grow_beside(LargeVector<BuildItem<C>>& items, std::uint32_t children, std::size_t first,
                      std::size_t middle, std::size_t last, int depth) {
         threads_ = 1;
         BinaryTreeBuilder right;
-        reserve_large(right.nodes_, 2 * (last - middle));
+        right.nodes_.reserve(2 * (last - middle));
         right.nodes_.emplace_back();
         run_beside([&] { right.grow(items, 0, middle, last, depth); },
                    [&] { grow(items, children, first, middle, depth); });
@@ -152,7 +151,7 @@ private:
     // leaf: the binned SAH's best plane along the centres' widest axis; the median along
     // it where the SAH finds none but the items are too many for a leaf, and from
     // kMedianDepth on.
-    std::size_t split(std::vector<BuildItem<C>>& items, std::size_t first, std::size_t last,
+    std::size_t split(LargeVector<BuildItem<C>>& items, std::size_t first, std::size_t last,
                       const BuildBox<C>& box, const BuildBox<C>& centres, int depth) const {
         const std::size_t n = last - first;
         int widest = 0;
@@ -181,7 +180,7 @@ private:
     // plane between two of them tried. Most nodes are this small, and for them setting
     // up and sweeping the bins cost more than the sort (the build of sphereflake 5 on one
     // thread 19.9 -> 16.2 ms, random 100k 35.0 -> 29.4 ms, medians of 15).
-    static std::size_t sorted_split(std::vector<BuildItem<C>>& items, std::size_t first, std::size_t last,
+    static std::size_t sorted_split(LargeVector<BuildItem<C>>& items, std::size_t first, std::size_t last,
                                     const BuildBox<C>& box, int a) {
         std::sort(items.begin() + std::ptrdiff_t(first), items.begin() + std::ptrdiff_t(last),
                   [a](const BuildItem<C>& x, const BuildItem<C>& y) { return x.centre[a] < y.centre[a]; });
@@ -210,7 +209,7 @@ private:
 
     // The cheapest plane between bins along axis a if it costs less than a leaf: the
     // number of bins below it; else 0.
-    static int best_plane(const std::vector<BuildItem<C>>& items, std::size_t first, std::size_t last,
+    static int best_plane(const LargeVector<BuildItem<C>>& items, std::size_t first, std::size_t last,
                           const BuildBox<C>& box, const BuildBox<C>& centres, int a) {
         const C scale = C(kBins) / (centres.hi[a] - centres.lo[a]);
         BuildBox<C> bins[kBins];
@@ -258,7 +257,7 @@ private:
         return C(kBoxCost) + C(kItemCost) * sum / box.half_area() < C(kItemCost) * C(n);
     }
 
-    static std::size_t median(std::vector<BuildItem<C>>& items, std::size_t first, std::size_t last, int a) {
+    static std::size_t median(LargeVector<BuildItem<C>>& items, std::size_t first, std::size_t last, int a) {
         const std::size_t middle = first + (last - first) / 2;
         std::nth_element(
             items.begin() + std::ptrdiff_t(first), items.begin() + std::ptrdiff_t(middle),
@@ -267,7 +266,7 @@ private:
         return middle;
     }
 
-    std::vector<BuildNode<C>> nodes_;
+    LargeVector<BuildNode<C>> nodes_;
     unsigned threads_ = 1;
 };
 
@@ -298,7 +297,7 @@ namespace detail {
 // Whether binary subtree b holds at most `most` items; if so, leaf is them all (a
 // subtree's items are contiguous: the build partitions them in place).
 template <typename C>
-bool small_subtree(const std::vector<BuildNode<C>>& binary, std::uint32_t b, std::uint32_t most,
+bool small_subtree(const LargeVector<BuildNode<C>>& binary, std::uint32_t b, std::uint32_t most,
                    WideChild& leaf) {
     const BuildNode<C>& node = binary[b];
     if (node.count > 0) {
@@ -317,8 +316,8 @@ bool small_subtree(const std::vector<BuildNode<C>>& binary, std::uint32_t b, std
 // one with the largest box is replaced by its own two children until there are Width
 // (the "pull up the largest" rule of Embree's BVH4 builders).
 template <int Width, typename C>
-std::uint32_t collapse_node(const std::vector<BuildNode<C>>& binary, std::uint32_t b,
-                            std::vector<WideNode<C, Width>>& nodes) {
+std::uint32_t collapse_node(const LargeVector<BuildNode<C>>& binary, std::uint32_t b,
+                            LargeVector<WideNode<C, Width>>& nodes) {
     std::uint32_t lanes[Width] = {binary[b].first, binary[b].first + 1};
     int used = 2;
     while (used < Width) {
@@ -361,11 +360,11 @@ std::uint32_t collapse_node(const std::vector<BuildNode<C>>& binary, std::uint32
 // The binary tree (non-empty; root binary[0]) as wide nodes of Width children, into
 // nodes: the root, a leaf or nodes[first].
 template <int Width, typename C>
-WideChild collapse(const std::vector<BuildNode<C>>& binary, std::vector<WideNode<C, Width>>& nodes) {
+WideChild collapse(const LargeVector<BuildNode<C>>& binary, LargeVector<WideNode<C, Width>>& nodes) {
     if (binary[0].count > 0) return {binary[0].first, binary[0].count};
     // At most one wide node per inner binary node: reserved (pages that are never
     // written cost no memory), so that the list is not copied as it grows.
-    reserve_large(nodes, binary.size() / 2);
+    nodes.reserve(binary.size() / 2);
     return {detail::collapse_node<Width>(binary, 0, nodes), 0};
 }
 

@@ -2,7 +2,6 @@
 #pragma once
 
 #include <cstdint>
-#include <vector>
 
 namespace rt {
 
@@ -26,7 +25,8 @@ struct ClearedLanes {
         return cleared;
     }
     // The same with each ellipsoid i as number[i] (the tree's leaf order).
-    ClearedLanes renumbered(const std::vector<std::uint32_t>& number) const {
+    template <typename Numbers>
+    ClearedLanes renumbered(const Numbers& number) const {
         ClearedLanes r = *this;
         for (int j = 0; j < count; ++j) r.ellipsoid[j] = number[ellipsoid[j]];
         return r;

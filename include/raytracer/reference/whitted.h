@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "raytracer/image.h"
+#include "raytracer/large_pages.h"
 #include "raytracer/reference/ellipsoid.h"
 #include "raytracer/reference/shading.h"
 #include "raytracer/reference/spec_rules.h"
@@ -116,7 +117,7 @@ private:
 
     Geometry geometry_;  // holds the ellipsoids
     std::vector<Light> lights_;
-    std::vector<Material> materials_;  // per ellipsoid
+    LargeVector<Material> materials_;  // per ellipsoid
     V background_;
     Real left_, right_, bottom_, top_, near_z_;
     int columns_, rows_;
