@@ -35,7 +35,7 @@ void* map_whole_pages(std::size_t bytes) {
     const std::size_t head = (kHugePage - reinterpret_cast<std::uintptr_t>(mapped) % kHugePage) % kHugePage;
     char* const block = static_cast<char*>(mapped) + head;
     if (head > 0) (void)::munmap(mapped, head);
-    (void)::munmap(block + whole, kHugePage - head);  // a length of 0 is refused, harmlessly
+    (void)::munmap(block + whole, kHugePage - head);  // never empty: head < kHugePage
     (void)::madvise(block, whole, MADV_HUGEPAGE);
     return block;
 }

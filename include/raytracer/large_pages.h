@@ -21,12 +21,13 @@ void advise_large_pages(void* data, std::size_t bytes);
 
 // The memory of a large array: on Linux, a block of kLargeBlock bytes or more is mapped
 // on its own, from a 2 MiB boundary, in whole 2 MiB pages, all of them advised (below
-// it, and elsewhere, it is operator new's). A block as malloc maps it starts a few bytes
-// past a 4 KiB page, so the advice left its head up to the first boundary, and its tail,
-// on 4 KiB pages, and blocks of 2-4 MiB (random 100k's materials) had no advice at all.
-// On the EPYC guest, random 100k read and prepared (RES 1 1), whole process, 2 threads,
-// medians of 11, three interleaved rounds: 3,400-3,560 faults and 96-106 ms, on whole
-// pages 661 faults and 71-77 ms, the same peak (50 MB).
+// it, elsewhere and under AddressSanitizer, it is operator new's). A block as malloc
+// maps it starts a few bytes past a 4 KiB page, so the advice left its head up to the
+// first boundary, and its tail, on 4 KiB pages, and blocks of 2-4 MiB (random 100k's
+// materials) had no advice at all. On the EPYC guest, random 100k read and prepared
+// (RES 1 1), whole process, 2 threads, medians of 11, three interleaved rounds: 3,400-
+// 3,560 faults and 96-106 ms, on whole pages 661 faults and 71-77 ms, the same peak
+// (50 MB).
 inline constexpr std::size_t kLargeBlock = std::size_t{2} << 20;
 void* allocate_large(std::size_t bytes);
 void deallocate_large(void* block, std::size_t bytes) noexcept;
