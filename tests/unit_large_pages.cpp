@@ -87,5 +87,5 @@ TEST(a_large_vector_filled_once_is_on_huge_pages_from_end_to_end) {
         return;
     }
     CHECK_EQ(reinterpret_cast<std::uintptr_t>(v.data()) % (std::uintptr_t{2} << 20), std::uintptr_t{0});
-    CHECK(kib >= 2 * 2048);  // both of its pages, the first and the one that holds its tail
+    CHECK(kib >= 2L * 2048);  // both of its pages, the first and the one that holds its tail
 }

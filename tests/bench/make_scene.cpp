@@ -6,12 +6,15 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <filesystem>
 #include <string>
 
 #include "scale_scenes.h"
 
-int main(int argc, char** argv) {
+namespace {
+
+int make_scene(int argc, char** argv) {
     if ((argc != 4 && argc != 6) ||
         (std::strcmp(argv[1], "flake") != 0 && std::strcmp(argv[1], "random") != 0)) {
         std::fprintf(stderr,
@@ -46,4 +49,15 @@ int main(int argc, char** argv) {
         return 3;
     }
     return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    try {
+        return make_scene(argc, argv);
+    } catch (const std::exception& e) {  // out of memory for the scene or its text
+        std::fprintf(stderr, "make_scene: %s\n", e.what());
+        return 1;
+    }
 }
