@@ -17,9 +17,9 @@
 namespace rt {
 
 namespace {
+#ifdef RT_WHOLE_PAGES
 constexpr std::size_t kHugePage = std::size_t{2} << 20;
 
-#ifdef RT_WHOLE_PAGES
 std::size_t whole_pages(std::size_t bytes) { return (bytes + kHugePage - 1) / kHugePage * kHugePage; }
 
 // Mapped with a huge page to spare, then the parts before the first boundary and after
@@ -42,14 +42,11 @@ void* map_whole_pages(std::size_t bytes) {
 #endif
 }  // namespace
 
-void advise_large_pages([[maybe_unused]] void* data, [[maybe_unused]] std::size_t bytes) {
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-    // The whole huge pages inside: from the first boundary at or after data.
-    const std::size_t skip = (kHugePage - reinterpret_cast<std::uintptr_t>(data) % kHugePage) % kHugePage;
-    // Fewer than two: the advice would split the mapping for little gain.
-    if (bytes < skip + 2 * kHugePage) return;
-    // Advice only: where the kernel has no huge pages to give, the pages stay small.
-    (void)::madvise(static_cast<char*>(data) + skip, (bytes - skip) / kHugePage * kHugePage, MADV_HUGEPAGE);
+bool large_blocks_on_huge_pages() {
+#ifdef RT_WHOLE_PAGES
+    return true;
+#else
+    return false;
 #endif
 }
 

@@ -8,6 +8,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "raytracer/file_pieces.h"
 #include "raytracer/helper_pool.h"
@@ -57,23 +58,22 @@ Scene load_scene(const std::string& path) {
             return std::move(*scene);
     }
     // Reserved at the file's size where the system tells it (one allocation, not a
-    // doubling string's: a 26 MB scene then peaks at 26 MB, not 48).
-    std::string text;
-    if (!ec && size <= kMaxSceneFileBytes) {
-        text.reserve(static_cast<std::size_t>(size));
-        advise_large_pages(text.data(), text.capacity());
-    }
+    // doubling vector's: a 26 MB scene then peaks at 26 MB, not 48).
+    LargeVector<char> bytes;
+    if (!ec && size <= kMaxSceneFileBytes) bytes.reserve(static_cast<std::size_t>(size));
     char buffer[1 << 14];
     for (std::size_t got; (got = std::fread(buffer, 1, sizeof buffer, in.get())) > 0;) {
-        text.append(buffer, got);
-        if (text.size() > kMaxSceneFileBytes) {
+        bytes.insert(bytes.end(), buffer, buffer + got);
+        if (bytes.size() > kMaxSceneFileBytes) {
             throw SceneError(
                 path, 0,
                 "is larger than " + std::to_string(kMaxSceneFileBytes >> 20) + " MiB, expected a scene file");
         }
     }
     if (std::ferror(in.get()) != 0) throw cannot_read(true, errno);
-    if (text.find_first_not_of(" \t\r\n\v\f") == std::string::npos) throw SceneError(path, 0, kEmptyFile);
+    const std::string_view text(bytes.data(), bytes.size());
+    if (text.find_first_not_of(" \t\r\n\v\f") == std::string_view::npos)
+        throw SceneError(path, 0, kEmptyFile);
     if (is_utf16(text)) throw SceneError(path, 0, kUtf16Text);
     return parse_scene(text, path, threads);
 }

@@ -1,16 +1,14 @@
-// Large arrays on huge pages (large_pages.h): the advice never changes what an array
-// holds, is harmless on any range, and, where Linux offers transparent huge pages for
-// advised memory, an advised array filled once is backed by them.
+// Large arrays on huge pages (large_pages.h): a LargeVector holds what a vector holds,
+// and, where Linux offers transparent huge pages for advised memory, one filled once is
+// backed by them from end to end.
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <string>
-#include <vector>
 
 #include "check.h"
-#include "raytracer/compiler.h"
 #include "raytracer/large_pages.h"
 
 namespace {
@@ -59,15 +57,13 @@ TEST(a_large_vector_keeps_its_contents_as_it_grows) {
     CHECK_EQ(small[99], 'x');
 }
 
-TEST(advice_on_any_range_is_harmless) {
-    rt::advise_large_pages(nullptr, 0);
-    rt::advise_large_pages(nullptr, std::size_t{1} << 30);  // unmapped: the advice fails quietly
-    char small[64] = {};
-    rt::advise_large_pages(small + 1, sizeof small - 1);
+TEST(an_empty_large_vector_holds_nothing) {
     rt::LargeVector<char> empty;
     empty.reserve(0);
     CHECK(empty.empty());
-    CHECK_EQ(small[0] + small[63], 0);
+    rt::LargeVector<char> emptied(rt::kLargeBlock, 'x');  // whole pages, then given back
+    rt::LargeVector<char>().swap(emptied);
+    CHECK(emptied.empty());
 }
 
 // From its first byte to its last: a block that started a few bytes past a 4 KiB page
@@ -77,12 +73,7 @@ TEST(a_large_vector_filled_once_is_on_huge_pages_from_end_to_end) {
     v.reserve(rt::kLargeBlock + 12345);
     v.assign(v.capacity(), 'x');
     const long kib = huge_kib_at(v.data());  // of the block's mapping
-#if defined(__linux__) && !defined(RT_UNDER_ASAN)
-    const bool whole_pages = true;
-#else
-    const bool whole_pages = false;  // large blocks from operator new there (large_pages.cpp)
-#endif
-    if (kib < 0 || !huge_pages_on_advice() || !whole_pages) {
+    if (kib < 0 || !huge_pages_on_advice() || !rt::large_blocks_on_huge_pages()) {
         std::printf("no transparent huge pages here: not checked\n");
         return;
     }

@@ -14,26 +14,23 @@
 
 namespace rt {
 
-// Asks that the whole 2 MiB pages inside [data, data + bytes) be backed by huge pages
-// when first touched. Only advice: harmless on memory already touched, and a no-op where
-// the range holds fewer than two, where it cannot pay.
-void advise_large_pages(void* data, std::size_t bytes);
-
 // The memory of a large array: on Linux, a block of kLargeBlock bytes or more is mapped
 // on its own, from a 2 MiB boundary, in whole 2 MiB pages, all of them advised (below
 // it, elsewhere and under AddressSanitizer, it is operator new's). A block as malloc
-// maps it starts a few bytes past a 4 KiB page, so the advice left its head up to the
-// first boundary, and its tail, on 4 KiB pages, and blocks of 2-4 MiB (random 100k's
-// materials) had no advice at all. On the EPYC guest, random 100k read and prepared
+// maps it starts a few bytes past a 4 KiB page: advice over it leaves its head up to the
+// first boundary, and its tail, on 4 KiB pages, and a block of 2-4 MiB (random 100k's
+// materials) holds no whole page to advise. On the EPYC guest, random 100k read and prepared
 // (RES 1 1), whole process, 2 threads, medians of 11, three interleaved rounds: 3,400-
 // 3,560 faults and 96-106 ms, on whole pages 661 faults and 71-77 ms, the same peak
 // (50 MB).
 inline constexpr std::size_t kLargeBlock = std::size_t{2} << 20;
 void* allocate_large(std::size_t bytes);
 void deallocate_large(void* block, std::size_t bytes) noexcept;
+// Whether allocate_large() maps whole huge pages here (Linux, not under AddressSanitizer).
+bool large_blocks_on_huge_pages();
 
-// An allocator for arrays of millions of bytes that are filled once (the parsed
-// spheres, the tree's build lists, nodes and leaf-ordered ellipsoids, the materials, the
+// An allocator for arrays of millions of bytes that are filled once (a small file's
+// text, the parsed spheres, the tree's build lists, nodes and leaf-ordered ellipsoids, the materials, the
 // shadow hints): blocks from allocate_large().
 template <typename T>
 struct LargePages {
