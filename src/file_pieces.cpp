@@ -51,7 +51,7 @@ std::optional<std::size_t> FileAt::after_line_feed(std::size_t at) const {
 }
 
 bool FileAt::read_lines(std::size_t first, std::size_t end, std::vector<char>& buffer,
-                        const std::function<void(std::string_view)>& lines) const {
+                        void (*lines)(const void* f, std::string_view chunk), const void* f) const {
     std::size_t held = 0;  // bytes of a line begun in the chunks before
     for (std::size_t at = first; at < end;) {
         const std::size_t n = std::min(kChunkBytes, end - at);
@@ -69,7 +69,7 @@ bool FileAt::read_lines(std::size_t first, std::size_t end, std::vector<char>& b
             if (c == '\n' || (c == '\r' && i < held)) whole = i;
         }
         if (whole == 0) continue;  // one line goes on: read on
-        lines(std::string_view(buffer.data(), whole));
+        lines(f, std::string_view(buffer.data(), whole));
         std::memmove(buffer.data(), buffer.data() + whole, held - whole);
         held -= whole;
     }

@@ -4,13 +4,14 @@
 
 #include <cctype>
 #include <cstdint>
+#include <cstdio>
+#include <exception>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
+#include <memory>
+
+#include "raytracer/output_file.h"
 
 namespace rt {
-
-namespace fs = std::filesystem;
 
 P6Writer::P6Writer(PendingFile& file, int width, int height)
     : file_(file), expected_(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3) {
@@ -49,21 +50,23 @@ std::string save_imageP6(int width, int height, const char* file_name, const uns
 std::string save_imageP3(int width, int height, const char* file_name, const unsigned char* pixels) {
     PendingFile file(file_name);
     if (!file.error().empty()) return file.error();
-    std::ostringstream out;
-    out << "P3\n" << width << ' ' << height << "\n255\n";
+    std::string text = "P3\n" + std::to_string(width) + ' ' + std::to_string(height) + "\n255\n";
     const unsigned char* p = pixels;
     for (int row = 0; row < height; ++row) {
-        for (int column = 0; column < width; ++column, p += 3)
-            out << ' ' << int{p[0]} << ' ' << int{p[1]} << ' ' << int{p[2]};
-        out << '\n';
+        for (int column = 0; column < width * 3; ++column) text += ' ' + std::to_string(int{*p++});
+        text += '\n';
     }
-    const std::string text = out.str();
     file.write(text.data(), text.size());
     return file.commit();
 }
 
 bool read_ppm(const std::string& file_name, Image& image, std::string& error) {
-    std::ifstream in(fs::u8path(file_name), std::ios::binary);
+#ifdef _WIN32
+    std::FILE* const file = _wfopen(std::filesystem::u8path(file_name).c_str(), L"rb");  // any Unicode name
+#else
+    std::FILE* const file = std::fopen(file_name.c_str(), "rb");
+#endif
+    const std::unique_ptr<std::FILE, int (*)(std::FILE*)> in(file, &std::fclose);
     if (!in) {
         error = "cannot open '" + file_name + "'";
         return false;
@@ -72,15 +75,15 @@ bool read_ppm(const std::string& file_name, Image& image, std::string& error) {
     // then exactly one whitespace byte before the pixels.
     std::string fields[4];
     for (std::string& field : fields) {
-        int c = in.get();
+        int c = std::fgetc(in.get());
         while (c != EOF && (std::isspace(c) || c == '#')) {
             if (c == '#')
-                while (c != EOF && c != '\n') c = in.get();
-            c = in.get();
+                while (c != EOF && c != '\n') c = std::fgetc(in.get());
+            c = std::fgetc(in.get());
         }
         while (c != EOF && !std::isspace(c)) {
             field += static_cast<char>(c);
-            c = in.get();
+            c = std::fgetc(in.get());
         }
     }
     long long width = 0, height = 0;
@@ -98,8 +101,7 @@ bool read_ppm(const std::string& file_name, Image& image, std::string& error) {
     image.width = static_cast<int>(width);
     image.height = static_cast<int>(height);
     image.rgb.assign(static_cast<std::size_t>(width * height * 3), 0);
-    in.read(reinterpret_cast<char*>(image.rgb.data()), static_cast<std::streamsize>(image.rgb.size()));
-    if (in.gcount() != static_cast<std::streamsize>(image.rgb.size())) {
+    if (std::fread(image.rgb.data(), 1, image.rgb.size(), in.get()) != image.rgb.size()) {
         error = "'" + file_name + "' is shorter than its header says";
         return false;
     }

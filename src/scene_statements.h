@@ -5,7 +5,7 @@
 #pragma once
 
 #include <algorithm>
-#include <sstream>
+#include <cstdio>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -192,10 +192,11 @@ public:
         }
     }
 
+    // As an ostream shows it by default (6 significant digits), without <sstream>.
     static std::string format(double value) {
-        std::ostringstream out;
-        out << value;
-        return out.str();
+        char text[32];
+        std::snprintf(text, sizeof text, "%g", value);
+        return text;
     }
 
     int line_of(std::string_view keyword) const {

@@ -9,6 +9,7 @@
 #include "check.h"
 #include "image_diff.h"
 #include "raytracer/image.h"
+#include "raytracer/output_file.h"
 #include "raytracer/ppm.h"
 
 namespace fs = std::filesystem;

@@ -17,7 +17,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <functional>
 #include <type_traits>
 
 #include "raytracer/compiler.h"
@@ -153,19 +152,19 @@ struct Lanes {
     }
 
     RT_ALWAYS_INLINE friend Lanes operator+(const Lanes& a, const Lanes& b) {
-        return map(a, b, std::plus<>());
+        return map(a, b, [](auto x, auto y) { return x + y; });
     }
     RT_ALWAYS_INLINE friend Lanes operator-(const Lanes& a, const Lanes& b) {
-        return map(a, b, std::minus<>());
+        return map(a, b, [](auto x, auto y) { return x - y; });
     }
     RT_ALWAYS_INLINE friend Lanes operator*(const Lanes& a, const Lanes& b) {
-        return map(a, b, std::multiplies<>());
+        return map(a, b, [](auto x, auto y) { return x * y; });
     }
     RT_ALWAYS_INLINE friend Lanes operator/(const Lanes& a, const Lanes& b) {
-        return map(a, b, std::divides<>());
+        return map(a, b, [](auto x, auto y) { return x / y; });
     }
     RT_ALWAYS_INLINE friend Lanes operator&(const Lanes& a, const Lanes& b) {
-        return map(a, b, std::bit_and<>());
+        return map(a, b, [](auto x, auto y) { return x & y; });
     }
     RT_ALWAYS_INLINE friend Lanes operator-(const Lanes& a) {
         return map(a, a, [](auto x, auto) { return -x; });
@@ -175,16 +174,16 @@ struct Lanes {
     }
 
     RT_ALWAYS_INLINE friend LaneBits operator>(const Lanes& a, const Lanes& b) {
-        return where(a, b, std::greater<>());
+        return where(a, b, [](auto x, auto y) { return x > y; });
     }
     RT_ALWAYS_INLINE friend LaneBits operator>=(const Lanes& a, const Lanes& b) {
-        return where(a, b, std::greater_equal<>());
+        return where(a, b, [](auto x, auto y) { return x >= y; });
     }
     RT_ALWAYS_INLINE friend LaneBits operator<(const Lanes& a, const Lanes& b) {
-        return where(a, b, std::less<>());
+        return where(a, b, [](auto x, auto y) { return x < y; });
     }
     RT_ALWAYS_INLINE friend LaneBits operator!=(const Lanes& a, const Lanes& b) {
-        return where(a, b, std::not_equal_to<>());
+        return where(a, b, [](auto x, auto y) { return x != y; });
     }
 
     RT_ALWAYS_INLINE friend Lanes sqrt(const Lanes& a) {

@@ -9,10 +9,11 @@
 #include <string>
 
 #include "raytracer/image.h"
-#include "raytracer/output_file.h"
 #include "raytracer/row_sink.h"
 
 namespace rt {
+
+class PendingFile;  // output_file.h
 
 // A P6 image written into a pending file as its rows come (a RowSink for render_to()): the
 // header at once, the rows as they come, then commit() checks that all came and
