@@ -1,32 +1,32 @@
-// render_to(): the path a scene takes (docs/speed.md). The reference path for the
-// tests; the tree (render_whitted.cpp) past the flat sweep's range (takes_the_tree());
-// the flat sweep (flat_sweep/render_flat_sweep.cpp) within it.
+// render_to(): the path a scene takes (docs/speed.md): the tree (render_tree.cpp) past
+// the flat sweep's range (takes_the_tree()), the flat sweep
+// (flat_sweep/render_flat_sweep.cpp) within it. And the two paths' images whole.
 #include "raytracer/render.h"
 
 #include <cstddef>
+#include <cstdint>
+#include <utility>
 
 #include "raytracer/flat_sweep/render_flat_sweep.h"
-#include "raytracer/helper_pool.h"
-#include "raytracer/render_whitted.h"
+#include "raytracer/render_tree.h"
 
 namespace rt {
 
-#ifndef RAYTRACER_EXTRA_PRECISIONS  // (see the end of this file)
-unsigned threads_asked(unsigned threads) { return threads == 0 ? available_cores() : threads; }
-#endif
-
 template <typename Real>
-void render_to(const Scene& scene, RowSink& sink, unsigned threads, bool accelerate) {
-    if (!accelerate) return render_reference_to<Real>(scene, sink, threads);
-    if (takes_the_tree(scene)) return render_whitted_to<Real>(scene, sink, threads);
+void render_to(const Scene& scene, RowSink& sink, unsigned threads) {
+    if (takes_the_tree(scene)) return render_tree_to<Real>(scene, sink, threads);
     render_flat_sweep_to<Real>(scene, sink, threads);
 }
 
 namespace {
 // Collects the rows into an image.
 struct ImageSink final : RowSink {
-    Image& image;
-    explicit ImageSink(Image& i) : image(i) {}
+    Image image;
+    explicit ImageSink(const Scene& scene) {
+        image.width = scene.columns;
+        image.height = scene.rows;
+        image.rgb.reserve(static_cast<std::size_t>(scene.columns) * static_cast<std::size_t>(scene.rows) * 3);
+    }
     void rows(const std::uint8_t* bytes, std::size_t size) override {
         image.rgb.insert(image.rgb.end(), bytes, bytes + size);
     }
@@ -34,14 +34,17 @@ struct ImageSink final : RowSink {
 }  // namespace
 
 template <typename Real>
-Image render(const Scene& scene, unsigned threads, bool accelerate) {
-    Image image;
-    image.width = scene.columns;
-    image.height = scene.rows;
-    image.rgb.reserve(static_cast<std::size_t>(scene.columns) * static_cast<std::size_t>(scene.rows) * 3);
-    ImageSink sink(image);
-    render_to<Real>(scene, sink, threads, accelerate);
-    return image;
+Image render(const Scene& scene, unsigned threads) {
+    ImageSink sink(scene);
+    render_to<Real>(scene, sink, threads);
+    return std::move(sink.image);
+}
+
+template <typename Real>
+Image render_reference(const Scene& scene, unsigned threads) {
+    ImageSink sink(scene);
+    render_reference_to<Real>(scene, sink, threads);
+    return std::move(sink.image);
 }
 
 // raytracer.exe renders in double. The tests and the precision report render in float
@@ -49,13 +52,16 @@ Image render(const Scene& scene, unsigned threads, bool accelerate) {
 // into raytracer_precisions (CMakeLists.txt) for those, so that the shipped program
 // compiles one precision only (a third of the build).
 #ifdef RAYTRACER_EXTRA_PRECISIONS
-template void render_to<float>(const Scene&, RowSink&, unsigned, bool);
-template void render_to<long double>(const Scene&, RowSink&, unsigned, bool);
-template Image render<float>(const Scene&, unsigned, bool);
-template Image render<long double>(const Scene&, unsigned, bool);
+template void render_to<float>(const Scene&, RowSink&, unsigned);
+template void render_to<long double>(const Scene&, RowSink&, unsigned);
+template Image render<float>(const Scene&, unsigned);
+template Image render<long double>(const Scene&, unsigned);
+template Image render_reference<float>(const Scene&, unsigned);
+template Image render_reference<long double>(const Scene&, unsigned);
 #else
-template void render_to<double>(const Scene&, RowSink&, unsigned, bool);
-template Image render<double>(const Scene&, unsigned, bool);
+template void render_to<double>(const Scene&, RowSink&, unsigned);
+template Image render<double>(const Scene&, unsigned);
+template Image render_reference<double>(const Scene&, unsigned);
 #endif
 
 }  // namespace rt

@@ -10,6 +10,9 @@ namespace rt {
 // container cpusets narrow), std::thread::hardware_concurrency() elsewhere; at least 1.
 unsigned available_cores();
 
+// The threads a render is asked for: `threads`, or available_cores() where it is 0.
+inline unsigned threads_asked(unsigned threads) { return threads == 0 ? available_cores() : threads; }
+
 // One job at a time for a process-wide set of helper threads:
 //
 //   HelperPool::Job job;                             // closes the job when destroyed

@@ -1,5 +1,7 @@
 // Renders a scene to an image: one eye ray per pixel through the pixel's top-left
-// corner on the near plane (SPEC section 3), traced in the scalar type Real.
+// corner on the near plane (SPEC section 3), traced in the scalar type Real. Each
+// function is instantiated for float, double and long double (src/render.cpp); threads
+// = 0 means all cores, and the image is byte-identical for any number of threads.
 #pragma once
 
 #include "raytracer/image.h"
@@ -8,20 +10,22 @@
 
 namespace rt {
 
-// The threads a render is asked for: `threads`, or all cores where it is 0.
-unsigned threads_asked(unsigned threads);
-
-// Instantiated for float, double and long double (src/render.cpp). threads = 0 means
-// all cores (threads_asked()); the image is byte-identical for any number of threads.
-// accelerate = false renders through the reference path (whitted.h with brute_force.h:
-// every ray against every ellipsoid), which the tests hold the fast paths to.
+// The fast path, raytracer.exe's: the flat sweep for a handful of ellipsoids, the tree
+// past them (docs/speed.md). It hands the image's rows to sink as they are finished (so
+// that writing a file overlaps the render) and never holds the whole image: every row
+// reaches sink, in order, before render_to() returns.
 template <typename Real>
-Image render(const Scene& scene, unsigned threads = 0, bool accelerate = true);
-
-// Renders as render() does, but hands the image's rows to sink as they are finished
-// (so that writing a file overlaps the render) and never holds the whole image: every
-// row reaches sink, in order, before render_to() returns.
+void render_to(const Scene& scene, RowSink& sink, unsigned threads = 0);
+// The same, the image returned whole.
 template <typename Real>
-void render_to(const Scene& scene, RowSink& sink, unsigned threads = 0, bool accelerate = true);
+Image render(const Scene& scene, unsigned threads = 0);
+
+// The reference path, the specification in code: each pixel on its own through
+// reference/whitted.h with brute_force.h (every ray against every ellipsoid), which the
+// tests hold the fast path to, byte for byte (src/render_reference.cpp).
+template <typename Real>
+void render_reference_to(const Scene& scene, RowSink& sink, unsigned threads = 0);
+template <typename Real>
+Image render_reference(const Scene& scene, unsigned threads = 0);
 
 }  // namespace rt

@@ -13,7 +13,7 @@
 #include "raytracer/helper_pool.h"
 #include "raytracer/own_cache_lines.h"
 #include "raytracer/render.h"
-#include "raytracer/render_whitted.h"
+#include "raytracer/render_tree.h"
 #include "raytracer/row_ring.h"
 
 namespace rt {
@@ -311,7 +311,7 @@ void render_flat_sweep_to(const Scene& scene, RowSink& sink, unsigned threads) {
     }
     // A precision or a scene the flat sweep does not render: the tree (once the sweep's
     // tables are freed).
-    render_whitted_to<Real>(scene, sink, threads);
+    render_tree_to<Real>(scene, sink, threads);
 }
 
 // As render.cpp: double for raytracer.exe, float and long double for the tests.

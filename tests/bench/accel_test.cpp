@@ -3,9 +3,9 @@
 //   ellipsoid sets built to stress the boxes' margins (thin, far, tiny, huge,
 //   negative-scaled, coincident and touching ellipsoids; rays from the camera, from
 //   surface points and towards lights, grazing ones among them);
-// - the tree's path (render_whitted_to(), which render() takes past
+// - the tree's path (render_tree_to(), which render() takes past
 //   takes_the_tree()) renders large scenes and every scene file as the reference
-//   (render(..., accelerate = false): whitted.h with brute_force.h), in float, double
+//   (render_reference(): whitted.h with brute_force.h), in float, double
 //   and long double and for any number of threads.
 #include <algorithm>
 #include <cmath>
@@ -26,7 +26,7 @@
 #include "raytracer/reference/brute_force.h"
 #include "raytracer/reference/whitted.h"
 #include "raytracer/render.h"
-#include "raytracer/render_whitted.h"
+#include "raytracer/render_tree.h"
 #include "scale_scenes.h"
 #include "stress_scenes.h"
 
@@ -100,7 +100,7 @@ int queries_differing(const rt::Scene& scene, unsigned seed) {
     return differing;
 }
 
-// Collects the rows of render_whitted_to() into an image.
+// Collects the rows of render_tree_to() into an image.
 struct ImageSink final : rt::RowSink {
     rt::Image image;
     void rows(const std::uint8_t* bytes, std::size_t size) override {
@@ -108,14 +108,14 @@ struct ImageSink final : rt::RowSink {
     }
 };
 
-// The tree's path (render_whitted_to(), which render() takes past
+// The tree's path (render_tree_to(), which render() takes past
 // takes_the_tree()) against the reference.
 template <typename Real>
 bool renders_as_plain(const std::string& name, const rt::Scene& s, unsigned threads) {
-    const rt::Image plain = rt::render<Real>(s, 1, false);
+    const rt::Image plain = rt::render_reference<Real>(s, 1);
     ImageSink sink;
     sink.image.width = s.columns, sink.image.height = s.rows;
-    rt::render_whitted_to<Real>(s, sink, threads);
+    rt::render_tree_to<Real>(s, sink, threads);
     const rt::Image& fast = sink.image;
     const ImageDiff d = compare_images(fast, plain);
     if (!d.same_size || d.differing_pixels != 0)
@@ -177,8 +177,8 @@ TEST(scenes_render_through_the_tree_as_the_reference) {
 TEST(render_takes_the_tree_past_the_flat_sweep) {
     rt::Scene scene = scale::random_ellipsoids(static_cast<int>(rt::kFlatSweepEllipsoids) + 1);
     scene.columns = 61, scene.rows = 41;
-    const rt::Image plain = rt::render<double>(scene, 1, false);
-    const rt::Image fast = rt::render<double>(scene, 2, true);
+    const rt::Image plain = rt::render_reference<double>(scene, 1);
+    const rt::Image fast = rt::render<double>(scene, 2);
     CHECK(fast.rgb == plain.rgb);
 }
 
@@ -196,7 +196,7 @@ TEST(render_takes_the_tree_past_the_flat_sweeps_pairs) {
     few_lights.lights.resize(10);
     CHECK(!rt::takes_the_tree(few_lights));
     scene.columns = 31, scene.rows = 23;
-    CHECK(rt::render<double>(scene, 2, true).rgb == rt::render<double>(scene, 1, false).rgb);
+    CHECK(rt::render<double>(scene, 2).rgb == rt::render_reference<double>(scene, 1).rgb);
 }
 
 // And past kFlatSweepPairWork, ellipsoids squared times lights, within the pairs' limit.
@@ -367,9 +367,9 @@ TEST(camera_on_a_surface_renders_as_the_reference) {
     // The flat sweep too, with the ellipsoid alone.
     rt::Scene alone = scene;
     alone.spheres.resize(1);
-    CHECK(rt::render<float>(alone, 1, true).rgb == rt::render<float>(alone, 1, false).rgb);
-    CHECK(rt::render<double>(alone, 1, true).rgb == rt::render<double>(alone, 1, false).rgb);
-    CHECK(rt::render<long double>(alone, 1, true).rgb == rt::render<long double>(alone, 1, false).rgb);
+    CHECK(rt::render<float>(alone, 1).rgb == rt::render_reference<float>(alone, 1).rgb);
+    CHECK(rt::render<double>(alone, 1).rgb == rt::render_reference<double>(alone, 1).rgb);
+    CHECK(rt::render<long double>(alone, 1).rgb == rt::render_reference<long double>(alone, 1).rgb);
 }
 
 namespace {
@@ -650,7 +650,7 @@ TEST(scenes_of_extreme_lengths_render_as_the_reference) {
     for (double f : {1e-90, 1e90, 1e-300, 1e150, 1e154}) {
         const std::string name = "random scene 1 scaled by 1e" + std::to_string(std::lround(std::log10(f)));
         const rt::Scene s = scaled(scene, f);
-        const bool same = rt::render<double>(s, 1, true).rgb == rt::render<double>(s, 1, false).rgb;
+        const bool same = rt::render<double>(s, 1).rgb == rt::render_reference<double>(s, 1).rgb;
         if (!same) std::cerr << name << ": the render differs from the reference\n";
         CHECK(same);
     }
@@ -718,7 +718,7 @@ TEST(windows_far_smaller_than_the_ellipsoids_render_as_the_reference) {
             ImageSink sweep;
             sweep.image.width = t.columns, sweep.image.height = t.rows;
             rt::render_flat_sweep_to<double>(t, sweep, 1);
-            const ImageDiff d = compare_images(sweep.image, rt::render<double>(t, 1, false));
+            const ImageDiff d = compare_images(sweep.image, rt::render_reference<double>(t, 1));
             if (d.differing_pixels != 0) std::cerr << name << ": the flat sweep differs\n";
             CHECK_EQ(d.differing_pixels, 0);
         }

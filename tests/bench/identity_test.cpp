@@ -42,8 +42,8 @@ struct RecordingSink final : rt::RowSink {
 
 template <typename Real>
 bool same_as_plain(const std::string& name, const rt::Scene& s) {
-    const rt::Image plain = rt::render<Real>(s, 1, false);
-    const rt::Image fast = rt::render<Real>(s, 2, true);
+    const rt::Image plain = rt::render_reference<Real>(s, 1);
+    const rt::Image fast = rt::render<Real>(s, 2);
     const ImageDiff d = compare_images(fast, plain);
     if (d.differing_pixels != 0)
         std::cerr << name << " (" << sizeof(Real) << "-byte reals): " << d.differing_pixels
@@ -119,7 +119,7 @@ TEST(scenes_past_the_flat_sweeps_tables_match_the_plain_tracer) {
 // render.
 TEST(the_sink_gets_every_row_in_order) {
     for (const auto& [name, scene] : file_scenes(400, 121)) {
-        const rt::Image image = rt::render<double>(scene, 1, false);
+        const rt::Image image = rt::render_reference<double>(scene, 1);
         for (unsigned threads : {1U, 2U, 3U, 8U}) {
             RecordingSink sink;
             rt::render_to<double>(scene, sink, threads);
@@ -135,7 +135,7 @@ TEST(the_sink_gets_every_row_in_order) {
         rt::Scene scene = file_scenes(5, rows).front().second;
         RecordingSink sink;
         rt::render_to<double>(scene, sink, 2);
-        CHECK(sink.bytes == rt::render<double>(scene, 1, false).rgb);
+        CHECK(sink.bytes == rt::render_reference<double>(scene, 1).rgb);
         CHECK_EQ(sink.sizes.size(), std::size_t{1});
     }
 }
@@ -155,7 +155,7 @@ struct SlowSink final : rt::RowSink {
 
 TEST(rows_wait_for_a_slow_sink) {
     for (const auto& [name, scene] : file_scenes(300, 400)) {
-        const rt::Image image = rt::render<double>(scene, 1, false);
+        const rt::Image image = rt::render_reference<double>(scene, 1);
         for (unsigned threads : {1U, 2U, 4U}) {
             SlowSink sink;
             rt::render_to<double>(scene, sink, threads);

@@ -1,4 +1,4 @@
-// path_gap: how far the tree (render_whitted_to()) is from the path render_to() takes,
+// path_gap: how far the tree (render_tree_to()) is from the path render_to() takes,
 // scene by scene, rendering alone in this process (no reading, no writing): the figure
 // that says when the flat sweep can go (docs/speed.md, "What is next"). For each scene
 // the two paths run alternately, `runs` times each, and the medians are printed with
@@ -14,7 +14,7 @@
 
 #include "raytracer/parser.h"
 #include "raytracer/render.h"
-#include "raytracer/render_whitted.h"
+#include "raytracer/render_tree.h"
 #include "raytracer/row_sink.h"
 #include "raytracer/scene_error.h"
 
@@ -73,9 +73,9 @@ int main(int argc, char** argv) {
                 KeepRows sink(scene);
                 const auto start = std::chrono::steady_clock::now();
                 if (through_tree)
-                    rt::render_whitted_to<double>(scene, sink, threads);
+                    rt::render_tree_to<double>(scene, sink, threads);
                 else
-                    rt::render_to<double>(scene, sink, threads, true);
+                    rt::render_to<double>(scene, sink, threads);
                 const double ms =
                     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
                         .count();

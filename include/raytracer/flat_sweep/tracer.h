@@ -55,7 +55,7 @@ public:
     static_assert(kFlatSweepPrecision<Real>, "the flat sweep renders in double or wider");
 
     // The reference that the tests hold this tracer's images to, byte for byte, is
-    // whitted.h with brute_force.h (render(..., accelerate = false)).
+    // whitted.h with brute_force.h (render_reference()).
     explicit Tracer(const Scene& scene)
         : ellipsoids_(make_ellipsoids<Real>(scene)), background_(V::from(scene.background)) {
         const V ambient = V::from(scene.ambient);

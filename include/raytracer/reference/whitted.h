@@ -24,6 +24,12 @@ class Whitted {
 public:
     using V = Vec3<Real>;
 
+    // What shading needs of an ellipsoid beyond it and its Finish (finish_of()).
+    struct Material {
+        V ambient;         // Ka * Ia * O
+        bool no_lighting;  // Kd = Ks = 0: no light adds anything
+    };
+
     // geometry: over make_ellipsoids<Real>(scene).
     Whitted(const Scene& scene, Geometry geometry)
         : geometry_(std::move(geometry)),
@@ -50,8 +56,9 @@ public:
     Real column_x(int c) const { return pixel_x(left_, right_, c, columns_); }
     Real row_y(int r) const { return pixel_y(top_, bottom_, r, rows_); }
 
-    // A thread's working memory: per light, the geometry's hint for its shadow rays
-    // (spec_rules.h). Neighbouring pixels share their shadows.
+    // A thread's working memory: per light, the ellipsoid its last shadow ray was blocked
+    // by, which the geometry tries first for the next (spec_rules.h): neighbouring pixels
+    // are mostly blocked by the same one. It never changes an answer.
     struct Scratch {
         std::vector<std::uint32_t> blockers;
     };
@@ -63,7 +70,8 @@ public:
     }
     // The colour seen from the camera along direction (before conversion to bytes).
     V eye_ray_colour(const V& direction, Scratch& scratch) const {
-        return trace({}, direction, kEyeRayMinT, kMaxReflections, background_, scratch);
+        const V camera{};  // at the origin (SPEC section 3)
+        return trace(camera, direction, kEyeRayMinT, kMaxReflections, background_, scratch);
     }
 
     // trace(): the colour seen along origin + t direction beyond min_t; miss when
@@ -86,21 +94,16 @@ public:
         for (std::size_t li = 0; li < lights_.size() && !m.no_lighting; ++li) {
             const LightRay<Real> r = light_ray(s, lights_[li].position);
             if (r.faces && !geometry_.occluded(s.point, r.to_light, scratch.blockers[li]))
-                add_light(colour, s, r, lights_[li].intensity, finish, true);
+                add_light(colour, s, r, lights_[li].intensity, finish, /*lit=*/true);
         }
         if (e.kr > 0 && reflections_left > 0)
             colour += trace(s.point, mirrored(s.normal, direction), kReflectedRayMinT, reflections_left - 1,
-                            V{}, scratch) *
+                            /*miss=*/V{}, scratch) *
                       e.kr;
         return colour;
     }
 
-    // What shading needs of an ellipsoid beyond it and its Finish (finish_of()), also
-    // for a driver that shades many hits at once (whitted_tiles.h).
-    struct Material {
-        V ambient;         // Ka * Ia * O
-        bool no_lighting;  // Kd = Ks = 0: no light adds anything
-    };
+    // For the drivers that shade many hits at once (whitted_tiles.h, the flat sweep).
     const Material& material(std::uint32_t i) const { return materials_[i]; }
     std::size_t ellipsoid_count() const { return materials_.size(); }
     std::size_t light_count() const { return lights_.size(); }

@@ -1,0 +1,15 @@
+// The tree's path: the reference's shading (whitted.h) a tile at a time, with the
+// acceleration layer (bvh.h) answering the geometry queries. render_to() takes it for
+// scenes beyond the flat sweep's range (takes_the_tree()).
+#pragma once
+
+#include "raytracer/row_sink.h"
+#include "raytracer/scene.h"
+
+namespace rt {
+
+// Instantiated for float, double and long double; threads = 0: all cores.
+template <typename Real>
+void render_tree_to(const Scene& scene, RowSink& sink, unsigned threads = 0);
+
+}  // namespace rt
