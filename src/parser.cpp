@@ -225,6 +225,9 @@ Scene merge(std::vector<Piece>& pieces, const std::string& file_name) {
 
 }  // namespace
 
+// A small text is one piece, parsed on this thread: Piece::parse() line by line (the
+// spheres and lights), then merge() applies the statements that occur once (NEAR ...
+// OUTPUT) and checks the scene as a whole.
 Scene parse_scene(std::string_view text, const std::string& file_name, unsigned threads) {
     // A UTF-8 byte-order mark, as some Windows editors write, is not part of the scene.
     if (text.substr(0, 3) == kUtf8Mark) text.remove_prefix(3);
