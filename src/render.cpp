@@ -1,10 +1,8 @@
 // render_to(): the path a scene takes (docs/speed.md): the tree (render_tree.cpp) past
 // the flat sweep's range (takes_the_tree()), the flat sweep
-// (flat_sweep/render_flat_sweep.cpp) within it. And the two paths' images whole.
+// (flat_sweep/render_flat_sweep.cpp) within it.
 #include "raytracer/render.h"
 
-#include <cstddef>
-#include <cstdint>
 #include <utility>
 
 #include "raytracer/flat_sweep/render_flat_sweep.h"
@@ -18,32 +16,10 @@ void render_to(const Scene& scene, RowSink& sink, unsigned threads) {
     render_flat_sweep_to<Real>(scene, sink, threads);
 }
 
-namespace {
-// Collects the rows into an image.
-struct ImageSink final : RowSink {
-    Image image;
-    explicit ImageSink(const Scene& scene) {
-        image.width = scene.columns;
-        image.height = scene.rows;
-        image.rgb.reserve(static_cast<std::size_t>(scene.columns) * static_cast<std::size_t>(scene.rows) * 3);
-    }
-    void rows(const std::uint8_t* bytes, std::size_t size) override {
-        image.rgb.insert(image.rgb.end(), bytes, bytes + size);
-    }
-};
-}  // namespace
-
 template <typename Real>
 Image render(const Scene& scene, unsigned threads) {
-    ImageSink sink(scene);
+    ImageSink sink(scene.columns, scene.rows);
     render_to<Real>(scene, sink, threads);
-    return std::move(sink.image);
-}
-
-template <typename Real>
-Image render_reference(const Scene& scene, unsigned threads) {
-    ImageSink sink(scene);
-    render_reference_to<Real>(scene, sink, threads);
     return std::move(sink.image);
 }
 
@@ -56,12 +32,9 @@ template void render_to<float>(const Scene&, RowSink&, unsigned);
 template void render_to<long double>(const Scene&, RowSink&, unsigned);
 template Image render<float>(const Scene&, unsigned);
 template Image render<long double>(const Scene&, unsigned);
-template Image render_reference<float>(const Scene&, unsigned);
-template Image render_reference<long double>(const Scene&, unsigned);
 #else
 template void render_to<double>(const Scene&, RowSink&, unsigned);
 template Image render<double>(const Scene&, unsigned);
-template Image render_reference<double>(const Scene&, unsigned);
 #endif
 
 }  // namespace rt

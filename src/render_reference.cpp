@@ -3,6 +3,7 @@
 // to its bytes.
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "raytracer/reference/brute_force.h"
@@ -29,12 +30,20 @@ void render_reference_to(const Scene& scene, RowSink& sink, unsigned threads) {
         });
 }
 
-// As render.cpp: double, and float and long double for the tests.
-#ifdef RAYTRACER_EXTRA_PRECISIONS
+template <typename Real>
+Image render_reference(const Scene& scene, unsigned threads) {
+    ImageSink sink(scene.columns, scene.rows);
+    render_reference_to<Real>(scene, sink, threads);
+    return std::move(sink.image);
+}
+
+// For the tests only (raytracer_precisions, CMakeLists.txt), in every precision:
+// raytracer.exe never renders through the reference.
 template void render_reference_to<float>(const Scene&, RowSink&, unsigned);
-template void render_reference_to<long double>(const Scene&, RowSink&, unsigned);
-#else
 template void render_reference_to<double>(const Scene&, RowSink&, unsigned);
-#endif
+template void render_reference_to<long double>(const Scene&, RowSink&, unsigned);
+template Image render_reference<float>(const Scene&, unsigned);
+template Image render_reference<double>(const Scene&, unsigned);
+template Image render_reference<long double>(const Scene&, unsigned);
 
 }  // namespace rt

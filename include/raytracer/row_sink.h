@@ -4,6 +4,8 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "raytracer/image.h"
+
 namespace rt {
 
 // Receives an image's bytes in order, whole rows at a time, exactly once each: the
@@ -22,6 +24,18 @@ protected:
     RowSink(const RowSink&) = default;
     RowSink& operator=(const RowSink&) = default;
     ~RowSink() = default;
+};
+
+// The simplest sink: the rows collected into an image of width x height.
+struct ImageSink final : RowSink {
+    Image image;
+    ImageSink(int width, int height) {
+        image.width = width, image.height = height;
+        image.rgb.reserve(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3);
+    }
+    void rows(const std::uint8_t* bytes, std::size_t size) override {
+        image.rgb.insert(image.rgb.end(), bytes, bytes + size);
+    }
 };
 
 }  // namespace rt

@@ -100,21 +100,12 @@ int queries_differing(const rt::Scene& scene, unsigned seed) {
     return differing;
 }
 
-// Collects the rows of render_tree_to() into an image.
-struct ImageSink final : rt::RowSink {
-    rt::Image image;
-    void rows(const std::uint8_t* bytes, std::size_t size) override {
-        image.rgb.insert(image.rgb.end(), bytes, bytes + size);
-    }
-};
-
 // The tree's path (render_tree_to(), which render() takes past
 // takes_the_tree()) against the reference.
 template <typename Real>
 bool renders_as_plain(const std::string& name, const rt::Scene& s, unsigned threads) {
     const rt::Image plain = rt::render_reference<Real>(s, 1);
-    ImageSink sink;
-    sink.image.width = s.columns, sink.image.height = s.rows;
+    rt::ImageSink sink(s.columns, s.rows);
     rt::render_tree_to<Real>(s, sink, threads);
     const rt::Image& fast = sink.image;
     const ImageDiff d = compare_images(fast, plain);
@@ -715,8 +706,7 @@ TEST(windows_far_smaller_than_the_ellipsoids_render_as_the_reference) {
             const std::string name =
                 "window " + std::to_string(std::log10(k)) + ", seed " + std::to_string(seed);
             CHECK(renders_as_plain<double>(name, t, 1));
-            ImageSink sweep;
-            sweep.image.width = t.columns, sweep.image.height = t.rows;
+            rt::ImageSink sweep(t.columns, t.rows);
             rt::render_flat_sweep_to<double>(t, sweep, 1);
             const ImageDiff d = compare_images(sweep.image, rt::render_reference<double>(t, 1));
             if (d.differing_pixels != 0) std::cerr << name << ": the flat sweep differs\n";
