@@ -75,7 +75,7 @@ Roots<Real> intersect_mapped(const Ellipsoid<Real>& e, const MappedOrigin<Real>&
     const Vec3<Real> d = direction / e.scale;
     const UnitLine<Real> line = unit_line(m.o.x, m.o.y, m.o.z, d.x, d.y, d.z);
     if (line.hit == 0) return {};  // a lane of the vector paths computes on and drops the roots
-    const LaneRoots<Real> r = unit_roots(line, m.c);
+    const UnitRoots<Real> r = unit_roots(line, m.c);
     return {true, r.near, r.far};
 }
 
