@@ -1,4 +1,5 @@
-// Where render() can hand an image's bytes while it is still rendering them.
+// Where render_to() hands an image's bytes while it is still rendering them, and
+// ImageSink, which collects them into an image.
 #pragma once
 
 #include <cstddef>
