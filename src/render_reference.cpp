@@ -17,8 +17,7 @@ namespace rt {
 template <typename Real>
 void render_reference_to(const Scene& scene, RowSink& sink, unsigned threads) {
     const Whitted<Real, BruteForce<Real>> tracer(scene, BruteForce<Real>(make_ellipsoids<Real>(scene)));
-    std::vector<Real> column_x(static_cast<std::size_t>(scene.columns));
-    for (int c = 0; c < scene.columns; ++c) column_x[static_cast<std::size_t>(c)] = tracer.column_x(c);
+    const std::vector<Real> column_x = column_xs<Real>(scene);
     render_bands(
         scene, sink, threads, [&] { return tracer.make_scratch(); },
         [&](int first_row, int rows, std::uint8_t* const* out, auto& scratch) {

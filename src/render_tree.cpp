@@ -29,8 +29,7 @@ void render_tree_to(const Scene& scene, RowSink& sink, unsigned threads) {
     using Tiles = WhittedTiles<kBandRows * kTileColumns, Real, Bvh<Real>>;
     static_assert(Tiles::kRows == kBandRows, "a band is a row of tiles");
     const Tiles tiles(tracer);
-    std::vector<Real> column_x(static_cast<std::size_t>(scene.columns));
-    for (int c = 0; c < scene.columns; ++c) column_x[static_cast<std::size_t>(c)] = tracer.column_x(c);
+    const std::vector<Real> column_x = column_xs<Real>(scene);
     render_bands(
         scene, sink, threads, [&] { return tiles.make_scratch(); },
         [&](int first_row, int rows, std::uint8_t* const* out, auto& scratch) {

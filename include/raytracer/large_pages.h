@@ -30,8 +30,8 @@ void deallocate_large(void* block, std::size_t bytes) noexcept;
 bool large_blocks_on_huge_pages();
 
 // An allocator for arrays of millions of bytes that are filled once (a small file's
-// text, the parsed spheres, the tree's build lists, nodes and leaf-ordered ellipsoids, the materials, the
-// shadow hints): blocks from allocate_large().
+// text, the parsed spheres, the tree's build lists, nodes and leaf-ordered ellipsoids,
+// the materials, the shadow hints): blocks from allocate_large().
 template <typename T>
 struct LargePages {
     using value_type = T;

@@ -101,15 +101,6 @@ std::chrono::microseconds worth_helping() {
     return std::chrono::microseconds(HelperPool::starts_on_idle_core() ? 100 : 3000);
 }
 
-// Each column's x on the near plane, computed once instead of per row.
-template <typename Real>
-std::vector<Real> column_xs(const Scene& scene) {
-    std::vector<Real> x(static_cast<std::size_t>(scene.columns));
-    for (int c = 0; c < scene.columns; ++c)
-        x[static_cast<std::size_t>(c)] = pixel_x(Real(scene.left), Real(scene.right), c, scene.columns);
-    return x;
-}
-
 // The camera's terms per ellipsoid, for intersecting eye rays many columns at a time.
 template <typename Real>
 EyeRays<Real> make_eye_rays(const Tracer<Real>& tracer, const std::vector<PixelRect>& rects,

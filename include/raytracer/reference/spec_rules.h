@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <vector>
 
 #include "raytracer/compiler.h"
 #include "raytracer/lanes.h"
@@ -32,6 +33,15 @@ Real pixel_x(Real left, Real right, int c, int columns) {
 template <typename Real>
 Real pixel_y(Real top, Real bottom, int r, int rows) {
     return top - (top - bottom) * Real(r) / Real(rows);
+}
+// pixel_x() of every column of the scene's image, a table each renderer makes once
+// rather than computing it per row.
+template <typename Real>
+std::vector<Real> column_xs(const Scene& scene) {
+    std::vector<Real> x(static_cast<std::size_t>(scene.columns));
+    for (int c = 0; c < scene.columns; ++c)
+        x[static_cast<std::size_t>(c)] = pixel_x(Real(scene.left), Real(scene.right), c, scene.columns);
+    return x;
 }
 
 // A ray parameter a root must lie beyond to be visible, for a ray that starts at
