@@ -5,7 +5,9 @@
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <system_error>
+#include <type_traits>
 
 #include "raytracer/interrupts.h"
 #include "raytracer/shown.h"
@@ -27,6 +29,7 @@ namespace rt {
 namespace {
 
 namespace fs = std::filesystem;
+static_assert(std::is_same_v<NativePath, fs::path::string_type>, "output_file.h names the wrong type");
 
 // A short hidden name in the target's folder: short, so that it fits the folder's name
 // limit whatever the target's length (a 255-byte target name is legal); in the same
@@ -102,7 +105,7 @@ PendingFile::PendingFile(const char* file_name, Destination destination)
         return;
     }
     try {
-        target_ = fs::u8path(name_);  // may throw on names that are not valid UTF-8 (on Windows)
+        target_ = fs::u8path(name_).native();  // may throw on names that are not valid UTF-8 (on Windows)
         if (destination_ == Destination::WriteInto) {
 #ifdef _WIN32
             file_ = _wfopen(target_.c_str(), L"wb");
@@ -137,12 +140,12 @@ void PendingFile::open_replacement() {
         replaces_ = true;
         keep_mode_ = existing.st_mode & 07777;
     }
-    const fs::path folder = folder_of(target_);
+    const NativePath folder = folder_of(target_).native();
     if (!open_unnamed(folder)) open_named(folder);
     if (open_ && replaces_) (void)fchmod(fd_, static_cast<mode_t>(keep_mode_));
 }
 
-bool PendingFile::open_unnamed(const fs::path& folder) {
+bool PendingFile::open_unnamed(const NativePath& folder) {
 #if defined(__linux__) && defined(O_TMPFILE)
     // The tests set this to exercise the named temporary of other systems here.
     if (std::getenv("RAYTRACER_NAMED_TEMPORARY") != nullptr) return false;
@@ -161,8 +164,8 @@ bool PendingFile::open_unnamed(const fs::path& folder) {
 #endif
 }
 
-void PendingFile::open_named(const fs::path& folder) {
-    temporary_ = temporary_name_in(folder);
+void PendingFile::open_named(const NativePath& folder) {
+    temporary_ = temporary_name_in(folder).native();
     if (!set_interrupt_cleanup(temporary_.c_str())) {
         error_ = shown(name_, kMaxShownPath) + " cannot be created: its path is too long";
         return;
@@ -200,7 +203,7 @@ bool PendingFile::link_unnamed(std::string& error) {
             return false;
         }
     }
-    temporary_ = temporary_name_in(folder_of(target_));
+    temporary_ = temporary_name_in(folder_of(target_)).native();
     if (!set_interrupt_cleanup(temporary_.c_str())) {
         error = "its path is too long";
         return false;
@@ -258,14 +261,13 @@ void PendingFile::open_replacement() {
         return;
     }
     replaces_ = fs::exists(target_, ec);
-    const fs::path folder = folder_of(target_);
-    open_named(folder);
+    open_named(folder_of(target_).native());
 }
 
-bool PendingFile::open_unnamed(const fs::path& /*folder*/) { return false; }
+bool PendingFile::open_unnamed(const NativePath& /*folder*/) { return false; }
 
-void PendingFile::open_named(const fs::path& folder) {
-    temporary_ = temporary_name_in(folder);
+void PendingFile::open_named(const NativePath& folder) {
+    temporary_ = temporary_name_in(folder).native();
     if (!set_interrupt_cleanup(temporary_.c_str())) {
         error_ = shown(name_, kMaxShownPath) + " cannot be created: its path is too long";
         return;

@@ -6,8 +6,10 @@
 #include <cstdint>
 #include <cstdio>
 #include <exception>
-#include <filesystem>
 #include <memory>
+#ifdef _WIN32
+#include <filesystem>  // u8path: a Unicode file name for _wfopen
+#endif
 
 #include "raytracer/output_file.h"
 

@@ -7,7 +7,6 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
-#include <filesystem>
 #include <string>
 
 namespace rt {
@@ -24,6 +23,15 @@ enum class Destination {
     // Standard output (-o -).
     StandardOutput,
 };
+
+// A path in the system's encoding, std::filesystem::path::string_type (UTF-16 on
+// Windows), named without <filesystem>, whose header costs each file that includes this
+// one 0.5 s to build (output_file.cpp checks that the two are the same type).
+#ifdef _WIN32
+using NativePath = std::wstring;
+#else
+using NativePath = std::string;
+#endif
 
 class PendingFile {
 public:
@@ -45,8 +53,8 @@ public:
 
 private:
     void open_replacement();
-    bool open_unnamed(const std::filesystem::path& folder);
-    void open_named(const std::filesystem::path& folder);
+    bool open_unnamed(const NativePath& folder);
+    void open_named(const NativePath& folder);
     bool link_unnamed(std::string& error);
     void discard();
     void close_file();
@@ -54,7 +62,7 @@ private:
 
     std::string name_;  // as given, for messages
     Destination destination_;
-    std::filesystem::path target_, temporary_;  // temporary_: empty while unnamed
+    NativePath target_, temporary_;  // temporary_: empty while unnamed
 #ifdef _WIN32
     std::FILE* file_ = nullptr;
 #else
