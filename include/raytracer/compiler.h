@@ -32,3 +32,11 @@
 #define RT_UNDER_ASAN 1
 #endif
 #endif
+
+// Whether Lanes (lanes.h) are held as native 32-byte vectors: where the compiler has
+// vector extensions (GCC, Clang) and the target AVX.
+#if (defined(__GNUC__) || defined(__clang__)) && defined(__AVX__)
+#define RT_NATIVE_LANES 1
+#else
+#define RT_NATIVE_LANES 0
+#endif

@@ -22,7 +22,7 @@
 #include "raytracer/compiler.h"
 #include "raytracer/vec3.h"
 
-#if (defined(__GNUC__) || defined(__clang__)) && defined(__AVX__)
+#if RT_NATIVE_LANES
 #include <immintrin.h>
 #endif
 
@@ -55,7 +55,7 @@ inline constexpr LaneBitTable<N> kLaneBits = make_lane_bits<N>();
 namespace detail {
 template <typename E>
 struct NativeVector;
-#if (defined(__GNUC__) || defined(__clang__)) && defined(__AVX__)
+#if RT_NATIVE_LANES
 template <typename Real>
 inline constexpr bool kNativeLanes =
     std::is_same_v<Real, double> || std::is_same_v<Real, float> || std::is_same_v<Real, std::int32_t>;

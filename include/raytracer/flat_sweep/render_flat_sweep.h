@@ -7,7 +7,7 @@
 #include <cstddef>
 #include <type_traits>
 
-#include "raytracer/lanes.h"
+#include "raytracer/compiler.h"
 #include "raytracer/row_sink.h"
 #include "raytracer/scene.h"
 #include "raytracer/scene_precision.h"
@@ -21,7 +21,7 @@ namespace rt {
 // flat against 12.0 / 12.7 / 13.5 / 16.3 ms. Where the tiles' lanes are arrays (no AVX: lanes.h) the
 // tree is slower: 384 there (random 250 / 300 / 384, render alone: 32 / 39 / 43 ms flat, before its
 // packets took shadows past 64 ellipsoids, against 57 / 61 / 67 ms in the tree).
-inline constexpr std::size_t kFlatSweepEllipsoids = Lanes<double, 16>::kNative ? 200 : 384;
+inline constexpr std::size_t kFlatSweepEllipsoids = RT_NATIVE_LANES ? 200 : 384;
 // and while ellipsoids x lights stay below this: the flat sweep keeps tables per
 // ellipsoid and light (about 100 bytes a pair), the tree nothing per pair;
 inline constexpr std::size_t kFlatSweepPairs = 65536;
