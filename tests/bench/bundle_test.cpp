@@ -14,6 +14,7 @@
 #include "random_checks.h"
 #include "raytracer/accel/blocker_hints.h"
 #include "raytracer/accel/bvh.h"
+#include "raytracer/accel/exact_culling.h"
 #include "raytracer/accel/light_shells.h"
 #include "raytracer/bit_scan.h"
 #include "raytracer/reference/brute_force.h"

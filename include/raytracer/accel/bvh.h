@@ -9,7 +9,7 @@
 // the nearest root found so far.
 //
 // Exactness: a query returns what brute_force.h returns, bit for bit. Each ellipsoid's box is its
-// axis-aligned bounding box grown by kCullingGap of each scale (unit_sphere_roots.h, slab_rays.h), a gap of
+// axis-aligned bounding box grown by kCullingGap of each scale (exact_culling.h, slab_rays.h), a gap of
 // 1e-3 in the unit sphere's space; a root that intersect() reports lies within a few ulps of |o'| of the unit
 // sphere (the rounding of the mapped origin, plus the tangency allowance, ellipsoid.h), so its point lies
 // deep inside the box, and the slab test's own rounding (a few ulps of the box's distance) cannot move it

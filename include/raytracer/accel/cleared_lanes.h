@@ -7,7 +7,7 @@ namespace rt {
 
 // Ellipsoids that a shadow query's caller knows cannot block some of its rays, each with
 // those rays' lanes (bit k for lane k; bit 0 for a query of one ray): the ellipsoid a
-// point lies on, seen from outside (leaves_own_ellipsoid(), spec_rules.h), and shells
+// point lies on, seen from outside (leaves_own_ellipsoid(), exact_culling.h), and shells
 // that hold both a point and the light (light_shells.h). The query skips them there.
 struct ClearedLanes {
     static constexpr int kMax = 5;  // the ellipsoid a point lies on and LightShells::kMax shells

@@ -19,6 +19,7 @@
 #include <cmath>
 #include <limits>
 
+#include "raytracer/accel/exact_culling.h"
 #include "raytracer/reference/ellipsoid.h"
 #include "raytracer/reference/unit_sphere_roots.h"
 

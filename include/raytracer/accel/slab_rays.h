@@ -10,6 +10,7 @@
 #include <limits>
 
 #include "raytracer/accel/bvh_build.h"
+#include "raytracer/accel/exact_culling.h"
 #include "raytracer/accel/intersect_lanes.h"
 #include "raytracer/bit_scan.h"
 #include "raytracer/compiler.h"
@@ -142,7 +143,7 @@ RT_ALWAYS_INLINE unsigned children_met(const WideNode<C, Width>& node, const Sla
     return mask & node.used;
 }
 
-// An ellipsoid's box: grown by kCullingGap of each scale (unit_sphere_roots.h), by 4
+// An ellipsoid's box: grown by kCullingGap of each scale (exact_culling.h), by 4
 // ulps of the centre too, so that the box's own rounding stays inside the gap even for
 // a small ellipsoid far from the origin, and by the smallest subnormal, as a scale below 500
 // of them is its own product with 1 + kCullingGap: a gap of one ulp is still
@@ -163,7 +164,7 @@ BuildBox<C> inflated_box(const Ellipsoid<Real>& e) {
 }
 
 // Ellipsoid e as the tree's build takes it (bvh_build.h): its inflated box, its centre
-// and its guard distance: culling_reach() smallest scales (unit_sphere_roots.h). The
+// and its guard distance: culling_reach() smallest scales (exact_culling.h). The
 // Euclidean distance is at most sqrt(3) times the max-norm one that the slab test
 // measures: the guard is half the reach.
 template <typename C, typename Real>

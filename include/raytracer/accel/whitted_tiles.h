@@ -15,6 +15,7 @@
 
 #include "raytracer/accel/blocker_hints.h"
 #include "raytracer/accel/cleared_lanes.h"
+#include "raytracer/accel/exact_culling.h"
 #include "raytracer/accel/eye_block.h"
 #include "raytracer/accel/light_shells.h"
 #include "raytracer/accel/slab_rays.h"

@@ -19,6 +19,7 @@
 #include <cstring>
 #include <type_traits>
 
+#include "raytracer/accel/exact_culling.h"
 #include "raytracer/lanes.h"
 #include "raytracer/reference/ellipsoid.h"
 #include "raytracer/reference/shading.h"
@@ -140,7 +141,7 @@ struct HitPacket {
     }
 
     // The lanes where the own ellipsoid cannot block the shadow ray to light l
-    // (leaves_own_ellipsoid(), spec_rules.h), seen from outside.
+    // (leaves_own_ellipsoid(), exact_culling.h), seen from outside.
     LaneBits self_clear(const Lights& l) const {
         LaneBits set = 0;
         for (int c = 0; c < N; c += kChunk)

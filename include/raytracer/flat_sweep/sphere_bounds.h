@@ -25,6 +25,7 @@
 #include <limits>
 #include <vector>
 
+#include "raytracer/accel/exact_culling.h"
 #include "raytracer/compiler.h"
 #include "raytracer/flat_sweep/bounding_sphere.h"
 #include "raytracer/flat_sweep/ray_cone.h"
@@ -42,7 +43,7 @@ public:
     SphereBounds() = default;
 
     explicit SphereBounds(const std::vector<Ellipsoid<Real>>& ellipsoids) {
-        const C reach = C(culling_reach<Real>());  // in smallest scales (unit_sphere_roots.h)
+        const C reach = C(culling_reach<Real>());  // in smallest scales (exact_culling.h)
         const std::size_t n = ellipsoids.size();
         cx_.resize(n), cy_.resize(n), cz_.resize(n), radius_.resize(n), radius2_.resize(n), guard2_.resize(n);
         for (std::size_t i = 0; i < n; ++i) {

@@ -5,13 +5,9 @@
 // decides with these, so that all agree bit for bit.
 #pragma once
 
-#include <cmath>
 #include <cstdint>
-#include <limits>
 #include <vector>
 
-#include "raytracer/compiler.h"
-#include "raytracer/lanes.h"
 #include "raytracer/reference/ellipsoid.h"
 #include "raytracer/scene_precision.h"
 #include "raytracer/vec3.h"
@@ -83,29 +79,6 @@ bool blocks_segment(const Roots<Real>& r) {
 template <typename Real>
 bool blocks_segment(const Ellipsoid<Real>& e, const Vec3<Real>& point, const Vec3<Real>& to_light) {
     return blocks_segment(intersect(e, point, to_light));
-}
-
-// Whether the ellipsoid a shadow ray starts on cannot block it, so that
-// blocks_segment() need not be asked. From a point seen from outside, towards a light in
-// front (N.L > 0), the ray leaves the ellipsoid at once, and the ellipsoid is convex:
-// intersect() finds a root below 0 and one within |c| / b of 0, where c = o'.o' - 1 (0
-// but for rounding; as mapped_origin() computes it) and b = o'.d' >= |(P - C)/s^2|
-// |L - P| (N.L - 32 eps) (Cauchy-Schwarz on the rounding of each factor). Where that
-// bound exceeds 2000 |c|, neither root is in (0.001, 1). The caller asks only for points
-// seen from outside; false where |c| is NaN. For one ray or lanes (lanes.h: T = Lanes).
-template <typename Real, typename T>
-MaskOf<T> leaves_own_ellipsoid(const T& scaled_length, const T& distance, const T& n_dot_l, const T& abs_c) {
-    const T slack = T(Real(32) * std::numeric_limits<Real>::epsilon());
-    return scaled_length * distance * (n_dot_l - slack) > T(Real(2000)) * abs_c;
-}
-
-// |c| of leaves_own_ellipsoid() at a point on the ellipsoid of this centre and scale, as
-// mapped_origin() computes c. For one ray or lanes.
-template <typename T>
-RT_ALWAYS_INLINE T own_abs_c(const Vec3<T>& point, const Vec3<T>& centre, const Vec3<T>& scale) {
-    using std::abs;
-    const Vec3<T> mapped = (point - centre) / scale;
-    return abs(dot(mapped, mapped) - T(1));
 }
 
 // Whether the specular term Ks Ip (R.V)^n of an ellipsoid is exactly zero for every

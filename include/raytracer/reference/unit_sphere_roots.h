@@ -177,23 +177,4 @@ RT_ALWAYS_INLINE UnitRoots<Real> unit_sphere_roots(Real ox, Real oy, Real oz, Re
     return unit_roots(unit_line(ox, oy, oz, dx, dy, dz), c);
 }
 
-// What a bounding volume may cull (docs/speed.md, "Why every path gives the reference's
-// bytes"). A root the solver reports lies within its rounding of the unit sphere, a few
-// ulps of |o'|: within culling_reach<Real>() smallest scales of an ellipsoid, that is
-// at most about 1e-10 (1e-5 in float). A bounding volume that holds its ellipsoid with a
-// gap of kCullingGap in the unit sphere's space (the flat sweep's spheres, the tree's
-// boxes) therefore rules out only tests that would find no usable root, for rays from
-// within that reach; beyond it nothing is culled.
-inline constexpr double kCullingGap = 1e-3;
-// The silhouette tests (silhouette.h, screen_bounds.h) square an eye ray's direction in
-// an ellipsoid's unit space: from this size on, its squares and their products with
-// terms of |o'| <= 1000 stay far above the end of double's normal range (1e-308); below
-// it (a window 1e100 times smaller than the ellipsoid) they may underflow to 0, and no
-// row is ruled out.
-inline constexpr double kLeastSquaredDirection = 1e-100;
-template <typename Real>
-constexpr double culling_reach() {
-    return std::numeric_limits<Real>::digits > 30 ? 1e6 : 1e2;
-}
-
 }  // namespace rt

@@ -1,0 +1,59 @@
+// What the fast paths may skip without changing a byte of the reference's image: the
+// gap a bounding volume keeps around its ellipsoid, the reach within which that holds,
+// and the shadow tests that the ellipsoid a ray starts on never needs. Shared by the
+// tree (accel/) and the flat sweep (flat_sweep/); the reference (reference/) skips
+// nothing.
+#pragma once
+
+#include <cmath>
+#include <limits>
+
+#include "raytracer/compiler.h"
+#include "raytracer/lanes.h"
+#include "raytracer/vec3.h"
+
+namespace rt {
+
+// What a bounding volume may cull (docs/speed.md, "Why every path gives the reference's
+// bytes"). A root the solver reports lies within its rounding of the unit sphere, a few
+// ulps of |o'|: within culling_reach<Real>() smallest scales of an ellipsoid, that is
+// at most about 1e-10 (1e-5 in float). A bounding volume that holds its ellipsoid with a
+// gap of kCullingGap in the unit sphere's space (the flat sweep's spheres, the tree's
+// boxes) therefore rules out only tests that would find no usable root, for rays from
+// within that reach; beyond it nothing is culled.
+inline constexpr double kCullingGap = 1e-3;
+// The silhouette tests (silhouette.h, screen_bounds.h) square an eye ray's direction in
+// an ellipsoid's unit space: from this size on, its squares and their products with
+// terms of |o'| <= 1000 stay far above the end of double's normal range (1e-308); below
+// it (a window 1e100 times smaller than the ellipsoid) they may underflow to 0, and no
+// row is ruled out.
+inline constexpr double kLeastSquaredDirection = 1e-100;
+template <typename Real>
+constexpr double culling_reach() {
+    return std::numeric_limits<Real>::digits > 30 ? 1e6 : 1e2;
+}
+
+// Whether the ellipsoid a shadow ray starts on cannot block it, so that
+// blocks_segment() need not be asked. From a point seen from outside, towards a light in
+// front (N.L > 0), the ray leaves the ellipsoid at once, and the ellipsoid is convex:
+// intersect() finds a root below 0 and one within |c| / b of 0, where c = o'.o' - 1 (0
+// but for rounding; as mapped_origin() computes it) and b = o'.d' >= |(P - C)/s^2|
+// |L - P| (N.L - 32 eps) (Cauchy-Schwarz on the rounding of each factor). Where that
+// bound exceeds 2000 |c|, neither root is in (0.001, 1). The caller asks only for points
+// seen from outside; false where |c| is NaN. For one ray or lanes (lanes.h: T = Lanes).
+template <typename Real, typename T>
+MaskOf<T> leaves_own_ellipsoid(const T& scaled_length, const T& distance, const T& n_dot_l, const T& abs_c) {
+    const T slack = T(Real(32) * std::numeric_limits<Real>::epsilon());
+    return scaled_length * distance * (n_dot_l - slack) > T(Real(2000)) * abs_c;
+}
+
+// |c| of leaves_own_ellipsoid() at a point on the ellipsoid of this centre and scale, as
+// mapped_origin() computes c. For one ray or lanes.
+template <typename T>
+RT_ALWAYS_INLINE T own_abs_c(const Vec3<T>& point, const Vec3<T>& centre, const Vec3<T>& scale) {
+    using std::abs;
+    const Vec3<T> mapped = (point - centre) / scale;
+    return abs(dot(mapped, mapped) - T(1));
+}
+
+}  // namespace rt
