@@ -190,17 +190,6 @@ TEST(render_takes_the_tree_past_the_flat_sweeps_pairs) {
     CHECK(rt::render<double>(scene, 2).rgb == rt::render_reference<double>(scene, 1).rgb);
 }
 
-// And past kFlatSweepPairWork, ellipsoids squared times lights, within the pairs' limit.
-TEST(render_takes_the_tree_past_the_flat_sweeps_pair_work) {
-    rt::Scene scene = scale::random_ellipsoids(200);
-    while (200.0 * 200.0 * double(scene.lights.size()) <= rt::kFlatSweepPairWork)
-        scene.lights.push_back(scene.lights[scene.lights.size() % 10]);
-    CHECK(scene.lights.size() * scene.spheres.size() <= rt::kFlatSweepPairs);
-    CHECK(rt::takes_the_tree(scene));
-    scene.lights.pop_back();
-    CHECK(!rt::takes_the_tree(scene));
-}
-
 // Built on two threads (past BinaryTreeBuilder::kItemsPerThread a half: at the root of
 // random 50k; below it where the root splits off a far cluster of 5,000), the tree is
 // the one built on one: as many nodes, the same leaf order, and every query answers alike.

@@ -1,5 +1,5 @@
 // A set of the flat sweep's ellipsoids, a bit each: the blockers a shadow ray of a
-// packet may meet (light_cones.h, pair_blockers.h), intersected and walked in
+// packet may meet (light_cones.h), intersected and walked in
 // increasing order (Tracer::shadow_lanes()).
 //
 // WHY two widths: the sets are made per packet and light, so they live on the stack and

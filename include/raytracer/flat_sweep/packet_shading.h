@@ -71,15 +71,12 @@ void Tracer<Real>::nearest_hits(const Real* ox, const Real* oy, const Real* oz, 
 }
 
 // Where a packet's points on ellipsoid i lie, for the shadow rays of every light: a ball
-// around them, for LightCones::packet(); whether they all lie in the ellipsoid's
-// bounding sphere, so that pair_blockers_'s sets apply (hit points lie on the
-// ellipsoid: always, but checked, as the sets' argument needs it); and the lanes whose
-// points lie within the ellipsoid for Enclosures, once for all lights (the mirror
-// room's points are on it, so within it for every light it encloses).
+// around them, for LightCones::packet(); and the lanes whose points lie within the
+// ellipsoid for Enclosures, once for all lights (the mirror room's points are on it, so
+// within it for every light it encloses).
 template <typename Real>
 struct Tracer<Real>::PacketPlace {
     typename LightCones<C>::Ball ball;
-    bool in_sphere = false;
     std::uint64_t self_within = 0;
 };
 
@@ -89,15 +86,6 @@ typename Tracer<Real>::PacketPlace Tracer<Real>::packet_place(const HitPacket<Re
                                                               std::uint32_t i) const {
     PacketPlace place;
     place.ball = LightCones<C>::template ball<N>(p.px, p.py, p.pz);
-    const BoundingSphere<C> b = bounds_.sphere(i);
-    const C radius2 = b.radius * b.radius;
-    std::uint64_t outside = 0;  // NaN points count as outside
-    RT_VECTOR_LOOP
-    for (int k = 0; k < N; ++k) {
-        const C x = p.px[k] - b.x, y = p.py[k] - b.y, z = p.pz[k] - b.z;
-        outside |= x * x + y * y + z * z <= radius2 ? 0 : kLaneBits<N>.bit[k];
-    }
-    place.in_sphere = outside == 0;
     if (enclosures_.encloses_a_light(i))
         place.self_within = enclosures_.template points_within<N>(p.px, p.py, p.pz, i, kLaneBits<N>.bit);
     return place;
@@ -119,12 +107,8 @@ void Tracer<Real>::shadow_batch(const HitPacket<Real, N>& p, const PacketPlace& 
     for (std::size_t b = 0; b < size; ++b) {
         const std::size_t li = first + b;
         if (!lit_any[b]) continue;
-        if (!culling_tables_) {
-            may_block[b] = every;
-        } else {
-            const Set among = place.in_sphere ? pair_blockers_.template set<Set>(i, li) : every;
-            may_block[b] = light_cones_.packet(li, lights_[li].position, place.ball, among);
-        }
+        may_block[b] =
+            culling_tables_ ? light_cones_.packet(li, lights_[li].position, place.ball, every) : every;
     }
     for (std::size_t b = 0; b < size; ++b)
         if (lit_any[b])
@@ -198,9 +182,8 @@ void Tracer<Real>::hit_colours(std::uint32_t i, int count, const Real* ox, const
 // LightCones::lanes(), or ruled out for the whole packet, below; the self ellipsoid
 // where self_clear; those that enclose light and point), so each lane gets the
 // unculled renderer's boolean: the same bytes.
-// may_block: the ellipsoids that can block some lane at all (PairBlockers, then
-// LightCones::packet() for the packet's ball; all of them without culling_tables_), in a
-// set of Set's width.
+// may_block: the ellipsoids that can block some lane at all (LightCones::packet() for
+// the packet's ball; all of them without culling_tables_), in a set of Set's width.
 // self_within: the lanes whose points Enclosures::points_within() ellipsoid self.
 template <typename Real>
 template <int N, typename Set>

@@ -22,15 +22,11 @@ namespace rt {
 // tree is slower: 384 there (random 250 / 300 / 384, render alone: 32 / 39 / 43 ms flat, before its
 // packets took shadows past 64 ellipsoids, against 57 / 61 / 67 ms in the tree).
 inline constexpr std::size_t kFlatSweepEllipsoids = RT_NATIVE_LANES ? 200 : 384;
-// and while ellipsoids x lights stay below this: the flat sweep keeps tables per
-// ellipsoid and light (about 100 bytes a pair), the tree nothing per pair;
+// and while ellipsoids x lights stay below this: the flat sweep keeps a light cone per
+// ellipsoid and light (light_cones.h), the tree nothing per pair. Within it,
+// 200 random ellipsoids with 240 / 320 lights took 203 / 270 ms flat against 237 / 309 ms
+// in the tree, 128 with 500 227 against 320 ms (400x400, whole process, medians of 5).
 inline constexpr std::size_t kFlatSweepPairs = 65536;
-// and ellipsoids squared x lights below this: per light, the flat sweep's tables and its
-// packets' tests of them grow with the ellipsoids, the tree's with their logarithm.
-// Whole process, 2 threads, 400x400, medians of 5 (2026-12-03 13:15 UTC): 200 ellipsoids
-// with 80 / 160 / 240 lights 82 / 177 / 287 ms flat against 98 / 181 / 264 ms in the
-// tree, 128 with 500 257 against 262 ms, 64 with 1,000 116 against 157 ms.
-inline constexpr double kFlatSweepPairWork = 8e6;
 
 // The flat sweep's shortcuts multiply squared lengths (4th powers of the scene's
 // numbers), which overflow or underflow past about 1e+-77: they are exact while every
@@ -46,7 +42,6 @@ bool lengths_fit_the_flat_sweep(const Scene& scene);
 inline bool takes_the_tree(const Scene& scene) {
     const std::size_t ellipsoids = scene.spheres.size();
     return ellipsoids > kFlatSweepEllipsoids || ellipsoids * scene.lights.size() > kFlatSweepPairs ||
-           double(ellipsoids) * double(ellipsoids) * double(scene.lights.size()) > kFlatSweepPairWork ||
            !lengths_fit_the_flat_sweep(scene);
 }
 

@@ -16,7 +16,6 @@
 #include "raytracer/flat_sweep/enclosures.h"
 #include "raytracer/flat_sweep/hit_packet.h"
 #include "raytracer/flat_sweep/light_cones.h"
-#include "raytracer/flat_sweep/pair_blockers.h"
 #include "raytracer/flat_sweep/render_flat_sweep.h"
 #include "raytracer/flat_sweep/screen_bounds.h"
 #include "raytracer/flat_sweep/sphere_bounds.h"
@@ -79,16 +78,17 @@ public:
         // Shadow rays are tested a packet at a time (shadow_lanes()) and no other way, so
         // the flat sweep renders a scene only where that pays (can_render(); the tree
         // takes the others): where the image has at least as many pixels as there are
-        // pairs of ellipsoids (PairBlockers' set-up grows as ellipsoids squared times
-        // lights, the image's shadow rays as pixels times lights: with 200 ellipsoids, the
-        // tree was as fast at 100x100 with 10 lights and at 170x170 with 160). Where no
-        // eye ray can hit anything there is no shadow ray at all, and nothing to build
-        // (0.04 ms of testBehind's 1.8 ms run). The tables that cull the candidates
-        // (light cones, pairs' sets) are exact only where rounding stays far below the
-        // spheres' inflation (everything_guarded()); elsewhere each packet tries every
-        // ellipsoid on every lane, with the prefilter and intersect(), exact at any
-        // distance (scenes/hard's disc_1e-15 and thin_1e-9, one thread: 0.11 and 0.45 ms
-        // in double, 1.03 and 2.52 ms through the tree).
+        // pairs of ellipsoids (its tables are made per scene, the image's shadow rays
+        // grow with its pixels: 200 random ellipsoids with 10 lights, whole process,
+        // medians of 15, took 7.35 ms in the tree against 7.77 flat at 150x150, 5.5
+        // against 6.7 at 100x100, and the same at 200x200). Where no eye ray can hit
+        // anything there is no shadow ray at all, and nothing to build (0.04 ms of
+        // testBehind's 1.8 ms run). The light cones that cull the candidates are exact
+        // only where rounding stays far below the spheres' inflation
+        // (everything_guarded()); elsewhere each packet tries every ellipsoid on every
+        // lane, with the prefilter and intersect(), exact at any distance (scenes/hard's
+        // disc_1e-15 and thin_1e-9, one thread: 0.11 and 0.45 ms in double, 1.03 and
+        // 2.52 ms through the tree).
         const std::vector<PixelRect> rects = screen_rects(scene);
         const bool any_seen = std::any_of(rects.begin(), rects.end(), [](const PixelRect& r) {
             return r.first_column <= r.last_column && r.first_row <= r.last_row;
@@ -98,13 +98,9 @@ public:
         can_render_ = !any_seen || (pixels >= n * n && ellipsoids_.size() <= WideSet::kCapacity);
         culling_tables_ = any_seen && can_render_ && everything_guarded();
         if (culling_tables_) {
-            const std::vector<BoundingSphere<C>> spheres = bounds_.spheres();
             std::vector<Vec3<C>> positions;
             for (const PointLight<Real>& l : lights_) positions.push_back(Vec3<C>::from(l.position));
-            light_cones_ = LightCones<C>(spheres, positions);
-            pair_blockers_ = PairBlockers<Real>(
-                spheres, ellipsoids_, positions,
-                [&](std::size_t l, std::size_t j) { return enclosures_.light_within(l, j); });
+            light_cones_ = LightCones<C>(bounds_.spheres(), positions);
         }
     }
 
@@ -240,10 +236,9 @@ private:
     SphereBounds<Real> bounds_;
     std::vector<MappedOrigin<Real>> eye_origin_;  // per ellipsoid, of the camera
     bool can_render_ = false;
-    bool culling_tables_ = false;  // light_cones_ and pair_blockers_ built and exact
+    bool culling_tables_ = false;  // light_cones_ built and exact
     Enclosures<Real> enclosures_;
-    PairBlockers<Real> pair_blockers_;  // where culling_tables_
-    LightCones<C> light_cones_;         // likewise
+    LightCones<C> light_cones_;  // where culling_tables_
     V background_;
 };
 
