@@ -190,6 +190,25 @@ TEST(render_takes_the_tree_past_the_flat_sweeps_pairs) {
     CHECK(rt::render<double>(scene, 2).rgb == rt::render_reference<double>(scene, 1).rgb);
 }
 
+// Many lights with many ellipsoids: within the pairs' limit the flat sweep renders them
+// (no bound on ellipsoids squared times lights), the bytes of the tree, which the tests
+// above hold to the reference.
+TEST(the_flat_sweep_renders_many_lights_as_the_tree_does) {
+    const int ellipsoids = 200;  // the flat sweep's most with AVX (384 without)
+    rt::Scene scene = scale::random_ellipsoids(ellipsoids);
+    while (scene.lights.size() < 240) {
+        rt::LightSpec l = scene.lights[scene.lights.size() % 10];
+        l.position.y += 0.013 * static_cast<double>(scene.lights.size());
+        l.intensity = {0.004, 0.004, 0.004};
+        scene.lights.push_back(l);
+    }
+    scene.columns = scene.rows = ellipsoids;  // as many pixels as pairs of ellipsoids
+    CHECK(!rt::takes_the_tree(scene));
+    rt::ImageSink tree(scene.columns, scene.rows);
+    rt::render_tree_to<double>(scene, tree, 2);
+    CHECK(rt::render<double>(scene, 2).rgb == tree.image.rgb);
+}
+
 // Built on two threads (past BinaryTreeBuilder::kItemsPerThread a half: at the root of
 // random 50k; below it where the root splits off a far cluster of 5,000), the tree is
 // the one built on one: as many nodes, the same leaf order, and every query answers alike.
