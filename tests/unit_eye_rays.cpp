@@ -96,12 +96,12 @@ long long differing_pixels(const std::vector<rt::SphereSpec>& spheres, const Fru
         ellipsoids.push_back(rt::make_ellipsoid<Real>(s));
         origins.push_back(rt::mapped_origin(ellipsoids.back(), rt::Vec3<Real>{}));
     }
-    // As render.cpp computes them.
+    // As every renderer computes them (spec_rules.h).
     const Real left = Real(f.left), right = Real(f.right), top = Real(f.top), bottom = Real(f.bottom);
-    const Real near_z = -Real(f.near_plane), columns = Real(f.columns), rows = Real(f.rows);
+    const Real near_z = -Real(f.near_plane);
     std::vector<Real> column_x(static_cast<std::size_t>(f.columns));
     for (int c = 0; c < f.columns; ++c)
-        column_x[static_cast<std::size_t>(c)] = left + (right - left) * static_cast<Real>(c) / columns;
+        column_x[static_cast<std::size_t>(c)] = rt::pixel_x(left, right, c, f.columns);
     const std::vector<int> first(spheres.size(), 0), last(spheres.size(), f.columns - 1);
     const rt::EyeRays<Real> eye_rays(ellipsoids, origins, column_x, first, last);
     rt::EyeRowHits<Real> found(f.columns);
@@ -109,7 +109,7 @@ long long differing_pixels(const std::vector<rt::SphereSpec>& spheres, const Fru
     long long differ = 0;
     for (int k = 0; k < rows_to_check; ++k) {
         const int r = k * (f.rows - 1) / std::max(1, rows_to_check - 1);
-        const Real y = top - (top - bottom) * static_cast<Real>(r) / rows;
+        const Real y = rt::pixel_y(top, bottom, r, f.rows);
         rt::EyeRays<Real>::clear(found, 0, f.columns - 1);
         for (std::uint32_t i = 0; i < spheres.size(); ++i)
             eye_rays.intersect(found, i, 0, f.columns - 1, column_x.data(), y, near_z);

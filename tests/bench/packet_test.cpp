@@ -50,13 +50,11 @@ long long differing_bytes(const rt::Scene& scene, int packet, int stride) {
     auto reference_scratch = reference.make_scratch();
     const rt::BruteForce<Real> plain(rt::make_ellipsoids<Real>(scene));
     long long differing = 0;
-    const Real left = Real(scene.left), right = Real(scene.right), top = Real(scene.top),
-               bottom = Real(scene.bottom);
     for (int r = 0; r < scene.rows; ++r) {
         std::vector<EyeHit<Real>> hits;
-        const Real y = top - (top - bottom) * Real(r) / Real(scene.rows);
+        const Real y = reference.row_y(r);
         for (int c = 0; c < scene.columns; ++c) {
-            const Real x = left + (right - left) * Real(c) / Real(scene.columns);
+            const Real x = reference.column_x(c);
             const V d{x, y, -Real(scene.near_plane)};
             const auto hit = plain.closest(V{}, d, rt::kEyeRayMinT);
             if (!hit.found()) continue;

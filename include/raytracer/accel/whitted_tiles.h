@@ -103,7 +103,7 @@ public:
         const C near_z = C(tracer_.near_z());
         for (int span = 0; span < columns; span += kSpanColumns) {
             const int span_end = std::min(span + kSpanColumns, columns);
-            // column_x is monotonic (each operation of Whitted::column_x() is): a span's
+            // column_x is monotonic (each operation of pixel_x() is): a span's
             // range is that of its ends.
             const C x_first = C(column_x[span]), x_last = C(column_x[span_end - 1]);
             const C x_lo = std::min(x_first, x_last), x_hi = std::max(x_first, x_last);

@@ -5,10 +5,12 @@
 // decides with these, so that all agree bit for bit.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
 #include "raytracer/reference/ellipsoid.h"
+#include "raytracer/scene.h"
 #include "raytracer/scene_precision.h"
 #include "raytracer/vec3.h"
 
