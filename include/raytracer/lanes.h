@@ -22,10 +22,6 @@
 #include "raytracer/compiler.h"
 #include "raytracer/vec3.h"
 
-#if RT_NATIVE_LANES
-#include <immintrin.h>
-#endif
-
 namespace rt {
 
 // The lanes' bits of an N-lane set, bit k for lane k, as a constant table: selects of
@@ -64,11 +60,16 @@ struct NativeVector {
     // NOLINTNEXTLINE(modernize-use-using): GCC takes a vector_size of a template's type only on a typedef
     typedef E type __attribute__((vector_size(32)));
 };
-// A comparison's mask (-1 or 0 in each lane) as bits, bit i for lane i: one instruction.
+// A comparison's mask (-1 or 0 in each lane) as bits, bit i for lane i: one instruction,
+// vmovmskpd or vmovmskps, through the builtin that GCC's and Clang's _mm256_movemask_pd()
+// and _mm256_movemask_ps() call. Not through <immintrin.h>: its 53,000 lines were more
+// than half of each render unit's preprocessed source, 0.3-0.5 s of its 4.4-4.9 s build.
 template <typename Mask>
 RT_ALWAYS_INLINE unsigned bits_of(Mask m) {
-    if constexpr (sizeof(m[0]) == 8) return static_cast<unsigned>(_mm256_movemask_pd((__m256d)m));
-    return static_cast<unsigned>(_mm256_movemask_ps((__m256)m));
+    // The casts reinterpret the mask's 32 bytes, as _mm256_movemask_pd()'s own.
+    if constexpr (sizeof(m[0]) == 8)
+        return static_cast<unsigned>(__builtin_ia32_movmskpd256((NativeVector<double>::type)m));
+    return static_cast<unsigned>(__builtin_ia32_movmskps256((NativeVector<float>::type)m));
 }
 // The mask whose lane i is -1 where bit i of bits is set, else 0.
 template <typename Mask>
