@@ -12,8 +12,10 @@
 //
 // usage: benchmark --raytracer EXE --baseline EXE --floor EXE --course DIR --heavy FILE
 //                  [--make-scene EXE] [--povray RENDER_SH] [--embree EXE] [--quick] [--runs N]
-//                  [--scale-only]
+//                  [--scale-only] [--source DIR --cmake EXE --generator G --compiler CXX
+//                  [--make-program EXE]]
 //   (d), (e): scale_table.h; --embree: tests/bench/embree_tracer.cpp's program, timed in (d).
+//   (f): build_table.h, where --source and the rest are given.
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -26,6 +28,7 @@
 #include <vector>
 
 #include "bench_process.h"
+#include "build_table.h"
 #include "image_diff.h"
 #include "raytracer/image.h"
 #include "raytracer/ppm.h"
@@ -79,10 +82,10 @@ Variant make_variant(const fs::path& dir, const fs::path& scene, int columns, in
 }
 
 int usage() {
-    std::fprintf(
-        stderr,
-        "usage: benchmark --raytracer EXE --baseline EXE --floor EXE --course DIR --heavy FILE "
-        "[--make-scene EXE] [--povray RENDER_SH] [--embree EXE] [--quick] [--runs N] [--scale-only]\n");
+    std::fprintf(stderr,
+                 "usage: benchmark --raytracer EXE --baseline EXE --floor EXE --course DIR --heavy FILE "
+                 "[--make-scene EXE] [--povray RENDER_SH] [--embree EXE] [--quick] [--runs N] [--scale-only] "
+                 "[--source DIR --cmake EXE --generator G --compiler CXX [--make-program EXE]]\n");
     return 2;
 }
 
@@ -248,6 +251,10 @@ int main(int argc, char** argv) {
     const fs::path povray = opt.count("povray") ? fs::absolute(opt["povray"]) : fs::path();
     const fs::path make_scene = opt.count("make-scene") ? fs::absolute(opt["make-scene"]) : fs::path();
     const fs::path embree = opt.count("embree") ? fs::absolute(opt["embree"]) : fs::path();
+    const bool builds =
+        opt.count("source") && opt.count("cmake") && opt.count("generator") && opt.count("compiler");
+    const BuildSetup build{builds ? fs::absolute(opt["source"]) : fs::path(), opt["cmake"], opt["generator"],
+                           opt["make-program"], opt["compiler"]};
 
     b.dir = fs::temp_directory_path() /
             ("raytracer-bench-" + std::to_string(Clock::now().time_since_epoch().count()));
@@ -268,6 +275,7 @@ int main(int argc, char** argv) {
         scale_table(b.raytracer, make_scene, povray, embree, b.quick, b.failed);
     else
         std::printf("\n(d), (e): not run (no --make-scene)\n");
+    if (!scale_only && builds) build_table(build, b.quick, b.failed);
 
     std::error_code ignored;
     fs::current_path(previous, ignored);
