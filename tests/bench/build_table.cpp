@@ -59,7 +59,7 @@ void build_table(const BuildSetup& s, bool quick, bool& failed) {
     bench::Stats configured, built, total;
     for (int round = 0; round < (quick ? 1 : 3); ++round) {
         std::error_code ignored;
-        fs::remove_all(dir, ignored);  // the scratch folder goes with the benchmark's
+        fs::remove_all(dir, ignored);  // a fresh folder each round; the last goes with the scratch folder
         const double c = bench::run(configure);
         const double b = c < 0 ? -1 : bench::run(build);
         if (c < 0 || b < 0) {

@@ -1,8 +1,8 @@
 // The benchmark's table of the program's size and build time (issue 14, target 5):
 //   (f) the lines of src/ and include/ (.h and .cpp, blank lines included; src/grade,
 //       the grader, aside), how many files, the longest; and raytracer.exe configured
-//       and built from scratch as README's render command does it (a fresh build folder,
-//       Release, the generator and compiler of this build), wall time of each round.
+//       and built from scratch as a user does (a fresh build folder, Release, the
+//       generator and compiler of this build, the default options): wall time of rounds.
 // Run in the benchmark's scratch folder (the working directory), where it builds.
 #pragma once
 
