@@ -71,9 +71,10 @@ struct Stats {
     }
 };
 
-inline void print_row(const std::string& name, const Stats& s, const std::string& tail) {
-    std::printf("  %-18s %8.2f %8.2f %8.2f  %s\n", name.c_str(), s.min() * 1e3, s.median() * 1e3,
-                s.max() * 1e3, tail.c_str());
+// A row of min, median and max, in milliseconds (or in seconds times unit).
+inline void print_row(const std::string& name, const Stats& s, const std::string& tail, double unit = 1e3) {
+    std::printf("  %-18s %8.2f %8.2f %8.2f  %s\n", name.c_str(), s.min() * unit, s.median() * unit,
+                s.max() * unit, tail.c_str());
 }
 
 inline std::string format(const char* f, double x) {

@@ -71,10 +71,7 @@ void build_table(const BuildSetup& s, bool quick, bool& failed) {
     }
     std::printf("  raytracer.exe from scratch (%s, Release), %zu round%s, seconds (min median max):\n",
                 s.generator.c_str(), total.samples.size(), total.samples.size() == 1 ? "" : "s");
-    const auto row = [](const char* name, const bench::Stats& t, const char* tail) {
-        std::printf("  %-18s %8.2f %8.2f %8.2f  %s\n", name, t.min(), t.median(), t.max(), tail);
-    };
-    row("configure", configured, "");
-    row("build", built, "");
-    row("both", total, total.median() <= 10 ? "met" : "not met");
+    bench::print_row("configure", configured, "", 1);
+    bench::print_row("build", built, "", 1);
+    bench::print_row("both", total, total.median() <= 10 ? "met" : "not met", 1);
 }
