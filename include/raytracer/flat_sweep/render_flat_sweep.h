@@ -7,7 +7,6 @@
 #include <cstddef>
 #include <type_traits>
 
-#include "raytracer/compiler.h"
 #include "raytracer/row_sink.h"
 #include "raytracer/scene.h"
 #include "raytracer/scene_precision.h"
@@ -19,9 +18,10 @@ namespace rt {
 // 150 / 200 / 256 / 300 ellipsoids 9.7 / 13.6 / 18.5 / 21.7 ms flat against 12.7 / 15.5 / 16.7 / 16.8 ms
 // in the tree; the first 150 / 200 / 256 / 300 of sphereflake 3 (mirrors) 8.8 / 10.2 / 13.2 / 17.1 ms
 // flat against 12.0 / 12.7 / 13.5 / 16.3 ms. Where the tiles' lanes are arrays (no AVX: lanes.h) the
-// tree is slower: 384 there (random 250 / 300 / 384, render alone: 32 / 39 / 43 ms flat, before its
-// packets took shadows past 64 ellipsoids, against 57 / 61 / 67 ms in the tree).
-inline constexpr std::size_t kFlatSweepEllipsoids = RT_NATIVE_LANES ? 200 : 384;
+// tree overtakes it there too (x86-64-v2, rendering alone, 2 threads, medians of 9, 2026-12-05: the
+// tree took 1.02 / 0.95 / 0.88 / 0.79 times the flat sweep's time on random 200 / 250 / 300 / 384, and
+// 0.95 / 0.86 / 0.77 / 0.67 times on the first 200 / 250 / 300 / 384 of sphereflake 3).
+inline constexpr std::size_t kFlatSweepEllipsoids = 200;
 // and while ellipsoids x lights stay below this: the flat sweep keeps a light cone per
 // ellipsoid and light (light_cones.h), the tree nothing per pair. Within it,
 // 200 random ellipsoids with 240 / 320 lights took 203 / 270 ms flat against 237 / 309 ms
