@@ -61,6 +61,8 @@ struct Parser {
             if (line.progress != CommandLine::Progress::WhenTerminal && line.progress != wanted)
                 return wrong("--progress and --quiet together, expected at most one of them");
             line.progress = wanted;
+        } else if (name == "--reference") {
+            line.reference = true;
         } else if (name == "--help" || name == "-h") {
             help = true;
         } else if (name == "--version") {
@@ -111,7 +113,8 @@ struct Parser {
     void decide() {
         if (help || version) {
             const bool alone = files.empty() && !line.output_given && line.threads == 0 &&
-                               line.progress == CommandLine::Progress::WhenTerminal && !(help && version);
+                               line.progress == CommandLine::Progress::WhenTerminal && !line.reference &&
+                               !(help && version);
             if (!alone) {
                 wrong(std::string(help ? "--help" : "--version") +
                       " with other arguments, expected it alone or exactly one scene file");

@@ -44,6 +44,8 @@ const char* usage_text() {
            "                          is the same, byte for byte, for any N\n"
            "  --progress, --quiet     show, or never show, the progress line (default: shown\n"
            "                          on a terminal once a render takes over a second)\n"
+           "  --reference             render through the reference path: every ray against\n"
+           "                          every ellipsoid, pixel by pixel; the same bytes, slower\n"
            "\n"
            "Where the image goes: a scene's OUTPUT must be a file name relative to the\n"
            "working folder, in it or below it (no absolute path, no '..'), and a new or\n"
@@ -96,7 +98,10 @@ int render(const rt::CommandLine& line, const rt::Scene& scene) {
             line.progress == rt::CommandLine::Progress::Always ||
             (line.progress == rt::CommandLine::Progress::WhenTerminal && rt::is_terminal(stderr));
         rt::ProgressSink sink(writer, scene.rows, progress);
-        rt::render_to<double>(scene, sink, line.threads);
+        if (line.reference)
+            rt::render_reference_to<double>(scene, sink, line.threads);
+        else
+            rt::render_to<double>(scene, sink, line.threads);
         rt::HelperPool::retire();  // the last job of this process
         sink.finish();
         error = writer.commit();

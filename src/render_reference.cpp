@@ -1,10 +1,9 @@
 // The reference path: each pixel on its own through Whitted (whitted.h) with BruteForce
-// (brute_force.h), every ray against every ellipsoid. The tests hold every other path
-// to its bytes.
+// (brute_force.h), every ray against every ellipsoid: `raytracer.exe --reference`, and
+// what the tests hold every other path to, byte for byte.
 #include <cstddef>
 #include <cstdint>
 #include <utility>
-#include <vector>
 
 #include "raytracer/reference/brute_force.h"
 #include "raytracer/reference/ellipsoid.h"
@@ -17,14 +16,13 @@ namespace rt {
 template <typename Real>
 void render_reference_to(const Scene& scene, RowSink& sink, unsigned threads) {
     const Whitted<Real, BruteForce<Real>> tracer(scene, BruteForce<Real>(make_ellipsoids<Real>(scene)));
-    const std::vector<Real> column_x = column_xs<Real>(scene);
     render_bands(
         scene, sink, threads, [&] { return tracer.make_scratch(); },
         [&](int first_row, int rows, std::uint8_t* const* out, auto& scratch) {
             for (int j = 0; j < rows; ++j) {
                 const Real y = tracer.row_y(first_row + j);
-                for (std::size_t c = 0; c < column_x.size(); ++c)
-                    tracer.pixel(column_x[c], y, out[j] + c * 3, scratch);
+                for (int c = 0; c < scene.columns; ++c)
+                    tracer.pixel(tracer.column_x(c), y, out[j] + static_cast<std::size_t>(c) * 3, scratch);
             }
         });
 }
@@ -36,13 +34,16 @@ Image render_reference(const Scene& scene, unsigned threads) {
     return std::move(sink.image);
 }
 
-// For the tests only (raytracer_precisions, CMakeLists.txt), in every precision:
-// raytracer.exe never renders through the reference.
+// As render.cpp: double for raytracer.exe (--reference), float and long double for the
+// tests and the precision report.
+#ifdef RAYTRACER_EXTRA_PRECISIONS
 template void render_reference_to<float>(const Scene&, RowSink&, unsigned);
-template void render_reference_to<double>(const Scene&, RowSink&, unsigned);
 template void render_reference_to<long double>(const Scene&, RowSink&, unsigned);
 template Image render_reference<float>(const Scene&, unsigned);
-template Image render_reference<double>(const Scene&, unsigned);
 template Image render_reference<long double>(const Scene&, unsigned);
+#else
+template void render_reference_to<double>(const Scene&, RowSink&, unsigned);
+template Image render_reference<double>(const Scene&, unsigned);
+#endif
 
 }  // namespace rt

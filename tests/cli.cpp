@@ -142,6 +142,7 @@ TEST(a_wrong_command_line_exits_2_with_one_line_on_stderr) {
         {{}, "no scene file given, expected exactly one scene file"},
         {{"a.txt", "b.txt"}, "more than one argument ('a.txt' and 'b.txt')"},
         {{"--version", "extra"}, "--version with other arguments"},
+        {{"--help", "--reference"}, "--help with other arguments"},
         {{""}, "an empty scene file name"},
         {{"--foo", "scene.txt"}, "unknown option '--foo'"},
         {{"scene.txt", "-x"}, "unknown option '-x'"},
@@ -256,6 +257,35 @@ TEST(paths_in_messages_are_escaped_and_cut) {
     CHECK(contains(missing.err, "no\\x01such-yyy"));
     CHECK(missing.err.size() < 600);
 #endif
+}
+
+// --reference renders through the reference path (every ray against every ellipsoid):
+// the same bytes as the fast path, here on a scene with shadows and mirrors.
+TEST(reference_renders_the_same_bytes_as_the_fast_path) {
+    const Scratch folder;
+    write_bytes(folder / "scene.txt",
+                "NEAR 1\nLEFT -1\nRIGHT 1\nBOTTOM -1\nTOP 1\nRES 48 36\n"
+                "SPHERE floor 0 -3 -10 20 1 20 0.5 0.5 0.5 0.2 0.6 0.3 0.4 10\n"
+                "SPHERE ball -1 0 -8 1 1.5 1 1 0.2 0.1 0.3 0.7 0.5 0.5 50\n"
+                "SPHERE egg 1.5 0.5 -9 1.2 0.6 0.8 0.1 0.8 0.3 0.3 0.6 0.9 0 20\n"
+                "LIGHT key 4 6 -2 0.8 0.8 0.8\nLIGHT fill -6 2 -4 0.3 0.3 0.5\n"
+                "BACK 0.1 0.1 0.2\nAMBIENT 0.3 0.3 0.3\nOUTPUT fast.ppm\n");
+    CHECK_EQ(run(folder, {"scene.txt"}).status, 0);
+    for (const std::vector<std::string>& arguments :
+         {std::vector<std::string>{"--reference", "scene.txt", "-o", "reference.ppm"},
+          std::vector<std::string>{"scene.txt", "--threads=3", "--reference", "-o", "reference.ppm"}}) {
+        const Run r = run(folder, arguments);
+        CHECK_EQ(r.status, 0);
+        CHECK_EQ(r.err, std::string());
+        CHECK(read_bytes(folder / "reference.ppm") == read_bytes(folder / "fast.ppm"));
+    }
+    // Not an image of the background (25 25 51) alone: the ellipsoids are in it.
+    const std::string bytes = read_bytes(folder / "fast.ppm");
+    CHECK_EQ(bytes.size(), std::size_t{13 + 48 * 36 * 3});
+    int background = 0;
+    for (std::size_t i = 13; i + 2 < bytes.size(); i += 3)
+        background += bytes.compare(i, 3, "\x19\x19\x33") == 0 ? 1 : 0;
+    CHECK(background > 0 && background < 48 * 36 * 3 / 4);
 }
 
 TEST(a_scene_renders_silently_to_its_output_file) {

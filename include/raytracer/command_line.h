@@ -16,7 +16,8 @@ struct CommandLine {
     std::string output;         // "-": standard output
     unsigned threads = 0;       // 0: the default
     Progress progress = Progress::WhenTerminal;
-    std::string error;  // when Wrong: "<what was found>, expected <what>"
+    bool reference = false;  // --reference: through the reference path (render.h)
+    std::string error;       // when Wrong: "<what was found>, expected <what>"
 };
 
 CommandLine parse_command_line(int argc, const char* const* argv);

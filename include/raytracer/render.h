@@ -22,8 +22,8 @@ Image render(const Scene& scene, unsigned threads = 0);
 
 // The reference path, the specification in code: each pixel on its own through
 // reference/whitted.h with brute_force.h (every ray against every ellipsoid), which the
-// tests hold the fast path to, byte for byte (src/render_reference.cpp, in the tests'
-// library raytracer_precisions only).
+// tests hold the fast path to, byte for byte (src/render_reference.cpp; raytracer.exe
+// takes it with --reference).
 template <typename Real>
 void render_reference_to(const Scene& scene, RowSink& sink, unsigned threads = 0);
 template <typename Real>
