@@ -64,7 +64,7 @@ std::vector<rt::SphereSpec> awkward_ellipsoids(std::mt19937& g, int count) {
 
 template <typename Real>
 struct Nearest {
-    std::uint32_t ellipsoid = rt::EyeRowHits<Real>::kNone;
+    std::uint32_t ellipsoid = rt::kNoEllipsoid;
     Real t = 0;
     bool inside = false;
 };
@@ -80,7 +80,7 @@ Nearest<Real> reference(const std::vector<rt::Ellipsoid<Real>>& ellipsoids,
         if (!r.hit) continue;
         const bool inside = !(r.near > min_t);
         const Real t = inside ? r.far : r.near;
-        if (t > min_t && (best.ellipsoid == rt::EyeRowHits<Real>::kNone || t < best.t)) best = {i, t, inside};
+        if (t > min_t && (best.ellipsoid == rt::kNoEllipsoid || t < best.t)) best = {i, t, inside};
     }
     return best;
 }
@@ -118,10 +118,10 @@ long long differing_pixels(const std::vector<rt::SphereSpec>& spheres, const Fru
             const Nearest<Real> want =
                 reference(ellipsoids, origins, rt::Vec3<Real>{column_x[at], y, near_z});
             const bool same = found.ellipsoid[at] == want.ellipsoid &&
-                              (want.ellipsoid == rt::EyeRowHits<Real>::kNone ||
+                              (want.ellipsoid == rt::kNoEllipsoid ||
                                (found.t[at] == want.t && (found.inside[at] != 0) == want.inside));
             if (!same) ++differ;
-            if (want.ellipsoid != rt::EyeRowHits<Real>::kNone) ++hits;
+            if (want.ellipsoid != rt::kNoEllipsoid) ++hits;
         }
     }
     return differ;

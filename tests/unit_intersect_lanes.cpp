@@ -177,7 +177,7 @@ long long differing_hits(unsigned seed, long long& found, long long& inside) {
         for (int k = 0; k < N; ++k) {
             const auto hit = reference.closest(rays[k].origin, rays[k].direction, min_t);
             if (!hit.found()) {
-                differing += index[k] != rt::TraceScratch<Real>::kNone;
+                differing += index[k] != rt::kNoEllipsoid;
                 continue;
             }
             ++found;

@@ -2,6 +2,7 @@
 #include "check.h"
 #include "raytracer/reference/brute_force.h"
 #include "raytracer/reference/ellipsoid.h"
+#include "raytracer/reference/shading.h"
 
 namespace {
 
@@ -72,16 +73,23 @@ TEST(negative_scales_give_the_same_ellipsoid) {
     CHECK(a.hit && b.hit);
     CHECK_EQ(a.near, b.near);
     CHECK_EQ(a.far, b.far);
-    const V p{1, 2, -8};  // the point of the surface nearest the eye
-    CHECK_EQ(rt::outward_normal(ellipsoid({1, 2, -9}, {-2, 3, -1}), p).z, 1.0);
+    // The hit at the point of the surface nearest the eye, (1, 2, -8): its normal faces
+    // the eye, and away from it where the ray sees the inside.
+    const rt::Ellipsoid<double> e = ellipsoid({1, 2, -9}, {-2, 3, -1});
+    const V p{1, 2, -8};
+    CHECK_EQ(rt::surface_point(V{}, p, 1.0, false, e.centre, e.scale_squared).normal.z, 1.0);
+    CHECK_EQ(rt::surface_point(V{}, p, 1.0, true, e.centre, e.scale_squared).normal.z, -1.0);
 }
 
 TEST(normal_is_position_over_scale_squared) {
-    const V n = rt::outward_normal(ellipsoid({0, 0, 0}, {2, 1, 1}), V{std::sqrt(2.0), std::sqrt(0.5), 0});
+    const rt::Ellipsoid<double> e = ellipsoid({0, 0, 0}, {2, 1, 1});
+    const V p{std::sqrt(2.0), std::sqrt(0.5), 0};
+    const rt::SurfacePoint<double> s = rt::surface_point(V{}, p, 1.0, false, e.centre, e.scale_squared);
     // (sqrt2/4, sqrt(0.5), 0) normalised
     const double len = std::sqrt(2.0 / 16 + 0.5);
-    CHECK_NEAR(n.x, std::sqrt(2.0) / 4 / len, 1e-15);
-    CHECK_NEAR(n.y, std::sqrt(0.5) / len, 1e-15);
+    CHECK_NEAR(s.normal.x, std::sqrt(2.0) / 4 / len, 1e-15);
+    CHECK_NEAR(s.normal.y, std::sqrt(0.5) / len, 1e-15);
+    CHECK_NEAR(s.scaled_length, len, 1e-15);
 }
 
 TEST(the_near_plane_cuts_ellipsoids_open) {
@@ -123,7 +131,7 @@ TEST(the_nearest_of_several_is_taken) {
 TEST(shadow_rays_count_hits_strictly_between_point_and_light) {
     const rt::BruteForce<double> tracer = scene_with({0, 0, -5}, {1, 1, 1});
     auto in_shadow = [&](V point, V to_light) {
-        std::uint32_t blocker = rt::kNoBlocker;
+        std::uint32_t blocker = rt::kNoEllipsoid;
         return tracer.occluded(point, to_light, blocker);
     };
     CHECK(in_shadow(V{0, 0, -10}, V{0, 0, 10}));  // blocker in between

@@ -1,5 +1,5 @@
 // The flat sweep (flat_sweep/render_flat_sweep.h): eye rays by row, hits shaded in
-// vector packets gathered in tiles (4x4 with 16 lanes), rows to the file as they finish.
+// vector packets gathered in tiles (4x4 with 16 lanes, 2x4 with 8), rows to the file as they finish.
 #include "raytracer/flat_sweep/render_flat_sweep.h"
 
 #include <algorithm>
@@ -223,7 +223,7 @@ private:
                 for (int c = std::max(c0, band.lo[b]); c <= c_end; ++c) {
                     const auto column = static_cast<std::size_t>(c);
                     const std::uint32_t i = hits.ellipsoid[column];
-                    if (i == EyeRowHits<Real>::kNone) continue;  // the background
+                    if (i == kNoEllipsoid) continue;  // the background
                     // An ambient-only surface's bytes are known: no packet.
                     if (const std::uint8_t* bytes = tracer_.flat_bytes(i)) {
                         std::copy(bytes, bytes + 3, row_out + column * 3);
@@ -279,8 +279,8 @@ void sweep_rows(FlatSweep<Real>& sweep, const Scene& scene, unsigned threads, un
     const auto worth = worth_helping();
     sweep.take_rows(work, [&](int r) {
         if (threads != 0) return;
-        // Alone, this thread has done rows 0..r. Not judged on its first few microseconds
-        // (cold caches): a scene done by then never asks.
+        // Alone, this thread has done rows 0..r. Not judged on its first eighth of
+        // worth_helping() (cold caches): a scene done by then never asks.
         const int done = r + 1, left = scene.rows - done;
         const auto elapsed = std::chrono::steady_clock::now() - start;
         if (left > 0 && elapsed * 8 >= worth && elapsed * left >= worth * done) {

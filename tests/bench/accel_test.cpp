@@ -75,7 +75,7 @@ int queries_differing(const rt::Scene& scene, unsigned seed) {
     const rt::Bvh<Real> tree(all);
     std::mt19937 g(seed);
     int differing = 0;
-    std::uint32_t tree_hint = rt::kNoBlocker;  // carried from ray to ray, as per light in a render
+    std::uint32_t tree_hint = rt::kNoEllipsoid;  // carried from ray to ray, as per light in a render
     for (int k = 0; k < 3000; ++k) {
         const rt::Ellipsoid<Real>& target = all[g() % all.size()];
         // A point on the target's surface (a hit point), the camera, or anywhere.
@@ -92,7 +92,7 @@ int queries_differing(const rt::Scene& scene, unsigned seed) {
             differing +=
                 !same_hit(tree.closest(origin, direction, min_t), plain.closest(origin, direction, min_t));
         // With and without a hint, which changes the order of the tests only.
-        std::uint32_t no_hint = rt::kNoBlocker, plain_hint = rt::kNoBlocker;
+        std::uint32_t no_hint = rt::kNoEllipsoid, plain_hint = rt::kNoEllipsoid;
         const bool blocked = plain.occluded(origin, direction, plain_hint);
         differing += tree.occluded(origin, direction, no_hint) != blocked;
         differing += tree.occluded(origin, direction, tree_hint) != blocked;
@@ -225,7 +225,7 @@ TEST(bvh_built_on_two_threads_is_the_same_tree) {
         CHECK_EQ(moved, 0);
         std::mt19937 g(11);
         int differing = 0;
-        std::uint32_t hint_one = rt::kNoBlocker, hint_two = rt::kNoBlocker;
+        std::uint32_t hint_one = rt::kNoEllipsoid, hint_two = rt::kNoEllipsoid;
         for (int k = 0; k < 20000; ++k) {
             const rt::Vec3<double> origin{uniform(g, -6, 6), uniform(g, -6, 6), uniform(g, -26, -6)};
             const rt::Vec3<double> direction{uniform(g, -1, 1), uniform(g, -1, 1), uniform(g, -1, 1)};
@@ -299,7 +299,7 @@ bool tangent_from_surface_as_brute_force() {
     // both leave the box before their min_t (0.001 and 0.0001).
     for (const Real length : {Real(2000), Real(2e5)}) {
         const V direction{off, length, 0};
-        std::uint32_t plain_hint = rt::kNoBlocker, tree_hint = rt::kNoBlocker;
+        std::uint32_t plain_hint = rt::kNoEllipsoid, tree_hint = rt::kNoEllipsoid;
         const bool blocked = plain.occluded(point, direction, plain_hint);
         if (tree.occluded(point, direction, tree_hint) != blocked) {
             std::cerr << sizeof(Real) << "-byte reals, length " << length << ": occluded() is " << !blocked
@@ -436,7 +436,7 @@ TEST(bvh_rays_of_subnormal_length) {
             const rt::NearestHit<double> a = plain.closest({}, d, rt::kEyeRayMinT);
             hits += a.found();
             differing += !same_hit(tree.closest({}, d, rt::kEyeRayMinT), a);
-            std::uint32_t plain_hint = rt::kNoBlocker, tree_hint = rt::kNoBlocker;
+            std::uint32_t plain_hint = rt::kNoEllipsoid, tree_hint = rt::kNoEllipsoid;
             differing += tree.occluded({}, d, tree_hint) != plain.occluded({}, d, plain_hint);
         }
     CHECK(hits > 0);  // the scene is seen at all
@@ -538,11 +538,11 @@ int adversarial_rays_differing(unsigned seed, int rays) {
     const V camera{Real(offset), Real(offset / 2), Real(-offset)};
     auto r = [&](double lo, double hi) { return Real(uniform(g, lo, hi)); };
     int differing = 0;
-    std::uint32_t tree_hint = rt::kNoBlocker;
+    std::uint32_t tree_hint = rt::kNoEllipsoid;
     auto compare = [&](const V& origin, const V& direction, double min_t) {
         differing +=
             !same_hit(tree.closest(origin, direction, min_t), plain.closest(origin, direction, min_t));
-        std::uint32_t plain_hint = rt::kNoBlocker, no_hint = rt::kNoBlocker;
+        std::uint32_t plain_hint = rt::kNoEllipsoid, no_hint = rt::kNoEllipsoid;
         const bool blocked = plain.occluded(origin, direction, plain_hint);
         differing += tree.occluded(origin, direction, no_hint) != blocked;
         differing += tree.occluded(origin, direction, tree_hint) != blocked;
@@ -679,7 +679,7 @@ TEST(bvh_float_directions_below_the_normal_range) {
         const rt::NearestHit<float> a = plain.closest(o, d, 0.0001);
         hits += a.found();
         differing += !same_hit(tree.closest(o, d, 0.0001), a);
-        std::uint32_t plain_hint = rt::kNoBlocker, tree_hint = rt::kNoBlocker;
+        std::uint32_t plain_hint = rt::kNoEllipsoid, tree_hint = rt::kNoEllipsoid;
         differing += tree.occluded(o, d, tree_hint) != plain.occluded(o, d, plain_hint);
     }
     CHECK(hits > 0);

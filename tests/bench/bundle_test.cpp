@@ -78,7 +78,7 @@ int shadow_lanes_differing(const Crowd<Real>& c, unsigned seed, int bundles, lon
     const rt::Bvh<Real> tree(c.all);
     std::mt19937 g(seed);
     int differing = 0;
-    std::uint32_t hint = rt::kNoBlocker;  // carried from bundle to bundle, as in a render
+    std::uint32_t hint = rt::kNoEllipsoid;  // carried from bundle to bundle, as in a render
     for (int b = 0; b < bundles; ++b) {
         // At times any ellipsoid, as a hint of another pair's (BlockerHints) may be.
         if (g() % 4 == 0) hint = static_cast<std::uint32_t>(g() % c.all.size());
@@ -115,7 +115,7 @@ int shadow_lanes_differing(const Crowd<Real>& c, unsigned seed, int bundles, lon
         const unsigned blocked = tree.occluded(points, light, lanes, hint, told);
         for (int k = 0; k < kLanes; ++k) {
             if ((lanes >> k & 1U) == 0) continue;
-            std::uint32_t plain_hint = rt::kNoBlocker;
+            std::uint32_t plain_hint = rt::kNoEllipsoid;
             differing +=
                 plain.occluded(points[k], light - points[k], plain_hint) != ((blocked >> k & 1U) != 0);
         }
@@ -240,7 +240,7 @@ int shell_lanes_differing(Crowd<Real> c, unsigned seed, int bundles, long& skipp
     const rt::Bvh<Real> tree(c.all);
     const rt::LightShells<Real> shells(tree, c.lights);
     int differing = 0;
-    std::uint32_t hint = rt::kNoBlocker;
+    std::uint32_t hint = rt::kNoEllipsoid;
     for (int b = 0; b < bundles; ++b) {
         const unsigned kind = g() % 3;  // the room's surface, another's, around the room's
         const rt::Ellipsoid<Real>& on = kind == 1 ? c.all[g() % (c.all.size() - 1)] : room;
@@ -267,7 +267,7 @@ int shell_lanes_differing(Crowd<Real> c, unsigned seed, int bundles, long& skipp
         const unsigned blocked = tree.occluded(points, c.lights[li], lanes, hint, told);
         for (int k = 0; k < kLanes; ++k) {
             if ((lanes >> k & 1U) == 0) continue;
-            std::uint32_t plain_hint = rt::kNoBlocker;
+            std::uint32_t plain_hint = rt::kNoEllipsoid;
             differing +=
                 plain.occluded(points[k], c.lights[li] - points[k], plain_hint) != ((blocked >> k & 1U) != 0);
         }
@@ -341,7 +341,7 @@ TEST(slab_rays_of_converging_edges_around_the_light_do_not_cull) {
 // kMaxSlots pairs share slots, and a hint read is one some pair stored, or none.
 TEST(blocker_hints_keep_a_hint_per_pair) {
     const rt::BlockerHints hints(1000, 7);
-    CHECK_EQ(hints.load(999, 6), rt::kNoBlocker);
+    CHECK_EQ(hints.load(999, 6), rt::kNoEllipsoid);
     for (std::uint32_t e = 0; e < 1000; ++e)
         for (std::size_t l = 0; l < 7; ++l) hints.store(e, l, e * 7 + static_cast<std::uint32_t>(l));
     int wrong = 0;
@@ -352,7 +352,7 @@ TEST(blocker_hints_keep_a_hint_per_pair) {
     const rt::BlockerHints shared(rt::BlockerHints::kMaxSlots, 3);
     shared.store(5, 1, 42);
     CHECK_EQ(shared.load(5, 1), 42U);
-    CHECK_EQ(shared.load(5, 2), rt::kNoBlocker);
+    CHECK_EQ(shared.load(5, 2), rt::kNoEllipsoid);
     // Ellipsoid 5 + kMaxSlots shares ellipsoid 5's slots.
     const std::uint32_t far = 5 + static_cast<std::uint32_t>(rt::BlockerHints::kMaxSlots);
     CHECK_EQ(shared.load(far, 1), 42U);

@@ -183,7 +183,7 @@ private:
     static constexpr RTCBuildQuality kQuality = RTC_BUILD_QUALITY_MEDIUM;
 
     Query query(const V& origin, const V& direction) const {
-        Query q{{}, &plain_.ellipsoid(0), origin, direction, 0, {}, rt::kNoBlocker};
+        Query q{{}, &plain_.ellipsoid(0), origin, direction, 0, {}, rt::kNoEllipsoid};
         rtcInitIntersectContext(&q.context);
         return q;
     }

@@ -27,7 +27,7 @@ public:
 
     BlockerHints(std::size_t ellipsoids, std::size_t lights)
         : lights_(lights), slots_(slot_count(ellipsoids * lights)), mask_(slots_.size() - 1) {
-        for (auto& s : slots_) s.store(kNoBlocker, std::memory_order_relaxed);
+        for (auto& s : slots_) s.store(kNoEllipsoid, std::memory_order_relaxed);
     }
 
     std::uint32_t load(std::uint32_t ellipsoid, std::size_t light) const {

@@ -5,8 +5,8 @@
 // as structure of arrays and tested against a ray in one loop over the lanes that the compiler turns into
 // vector instructions (8 doubles, one AVX-512 register or two AVX2 ones, measured faster here than 4):
 // Embree's BVH4/BVH8 (I. Wald et al., "Embree: A Kernel Framework for Efficient CPU Ray Tracing", ACM TOG
-// 33(4), 2014). Children are visited nearest first; the closest-hit query skips a subtree that starts beyond
-// the nearest root found so far.
+// 33(4), 2014). The closest-hit query visits children nearest first and skips a subtree that starts beyond
+// the nearest root found so far; the any-hit query takes them in any order and stops at the first blocker.
 //
 // Exactness: a query returns what brute_force.h returns, bit for bit. Each ellipsoid's box is its
 // axis-aligned bounding box grown by kCullingGap of each scale (exact_culling.h, slab_rays.h), a gap of
@@ -70,7 +70,7 @@ public:
         const Real beyond = visible_beyond(Real(min_t));
         const OneRay ray = one_ray(origin, direction);
         NearestHit<Real> best;
-        traverse<true>(ray, std::numeric_limits<C>::infinity(), [&](Child leaf, C& t1) {
+        traverse<Visit::NearestFirst>(ray, std::numeric_limits<C>::infinity(), [&](Child leaf, C& t1) {
             for (std::uint32_t k = leaf.first; k < leaf.first + leaf.count; ++k) {
                 Real t;
                 bool inside;
@@ -115,7 +115,7 @@ public:
         const Real beyond = visible_beyond(Real(min_t));
         LaneRays<Real, N> rays;  // NOLINT(cppcoreguidelines-pro-type-member-init): set() before use
         bool rays_set = false;
-        traverse<true, true>(ray, std::numeric_limits<C>::infinity(), [&](Child leaf, C& t1) {
+        traverse<Visit::NearestFirst, true>(ray, std::numeric_limits<C>::infinity(), [&](Child leaf, C& t1) {
             for (std::uint32_t i = leaf.first; i < leaf.first + leaf.count; ++i) {
                 const BuildBox<C> box = inflated_box<C>(items_[i]);
                 if (!meets_box(ray, box, t1)) continue;
@@ -149,7 +149,7 @@ public:
         if (items_.empty()) return false;
         if (!make_slab_ray(o, o, d_lo, d_hi, least_direction_, ray) || !guarded(o, o)) return true;
         bool met = false;
-        traverse<false, true>(ray, std::numeric_limits<C>::infinity(), [&](Child leaf, C& t1) {
+        traverse<Visit::AnyOrder, true>(ray, std::numeric_limits<C>::infinity(), [&](Child leaf, C& t1) {
             for (std::uint32_t i = leaf.first; i < leaf.first + leaf.count && !met; ++i)
                 met = meets_box(ray, inflated_box<C>(items_[i]), t1);
             return met;
@@ -167,8 +167,8 @@ public:
     // As BruteForce::occluded(): whether some ellipsoid blocks the shadow ray, trying first the hint
     // `blocker` (a position in leaf order, any value: blocker_hints.h), which becomes the one found. The
     // ellipsoids in cleared (bit 0) are not tried: the caller knows that they cannot block. Past the hint,
-    // each one's box is tried first by the descent's slab ray where boxes may cull it (callgrind, one
-    // thread, against a ray of its own: sphereflakes 4 / 5 2.8% / 1.3% fewer instructions, random 10k 0.2%).
+    // each one's box is tried first by the descent's slab ray where boxes may cull it (measured in
+    // docs/speed.md).
     bool occluded(const V& point, const V& to_light, std::uint32_t& blocker,
                   const ClearedLanes& cleared = {}) const {
         const ClearedLanes skip = in_leaf_order(cleared);
@@ -178,7 +178,7 @@ public:
         const OneRay ray = one_ray(point, to_light);
         const std::uint32_t tried = blocker;
         bool blocked = false;
-        traverse<false>(ray, C(1), [&](Child leaf, C&) {
+        traverse<Visit::AnyOrder>(ray, C(1), [&](Child leaf, C&) {
             for (std::uint32_t k = leaf.first; k < leaf.first + leaf.count && !blocked; ++k)
                 if (k != tried && (skip.of(k) & 1U) == 0 &&
                     (!ray.culls() || meets_box(ray.slab, inflated_box<C>(items_[k]), C(1))) &&
@@ -261,7 +261,7 @@ public:
         if (tried < items_.size()) try_ellipsoid(tried, lanes);
         unsigned open = lanes & ~blocked;
         if (open == 0) return blocked;
-        traverse<false, true>(ray, C(1), [&](Child leaf, C&) {
+        traverse<Visit::AnyOrder, true>(ray, C(1), [&](Child leaf, C&) {
             for (std::uint32_t i = leaf.first; i < leaf.first + leaf.count; ++i) {
                 if (i == tried) continue;
                 try_ellipsoid(i, open);
@@ -330,12 +330,15 @@ private:
         ray.guarded = guarded(o, o);
         return ray;
     }
-    // Visits the leaves whose boxes the ray may meet within [0, t1], nearest first
-    // where kNearestFirst (else in any order: any hit will do); leaf(child, t1) may
-    // lower t1 and returns true to end the search.
-    template <bool kNearestFirst, typename Leaf>
+    // The order of a descent's children: the closest-hit queries want the nearest first,
+    // the any-hit queries take any (any blocker will do).
+    enum class Visit { NearestFirst, AnyOrder };
+    // Visits the leaves whose boxes the ray may meet within [0, t1] in kVisit's order;
+    // leaf(child, t1) may lower t1 and returns true to end the search. A slab ray is
+    // kGuarded where its origin lies within every ellipsoid's guard (guarded()).
+    template <Visit kVisit, typename Leaf>
     void traverse(const OneRay& ray, C t1, Leaf leaf) const;
-    template <bool kNearestFirst, bool kGuarded, typename Leaf>
+    template <Visit kVisit, bool kGuarded, typename Leaf>
     void traverse(const SlabRay<C>& ray, C t1, Leaf leaf) const;
 
     LargeVector<Node> nodes_;

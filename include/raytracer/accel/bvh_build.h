@@ -178,8 +178,7 @@ private:
 
     // split() for a node of at most kBins items: the items sorted along axis a and each
     // plane between two of them tried. Most nodes are this small, and for them setting
-    // up and sweeping the bins cost more than the sort (the build of sphereflake 5 on one
-    // thread 19.9 -> 16.2 ms, random 100k 35.0 -> 29.4 ms, medians of 15).
+    // up and sweeping the bins cost more than the sort (measured in docs/speed.md).
     static std::size_t sorted_split(LargeVector<BuildItem<C>>& items, std::size_t first, std::size_t last,
                                     const BuildBox<C>& box, int a) {
         std::sort(items.begin() + std::ptrdiff_t(first), items.begin() + std::ptrdiff_t(last),

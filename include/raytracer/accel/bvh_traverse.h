@@ -13,22 +13,22 @@
 namespace rt {
 
 template <typename Real, int Width>
-template <bool kNearestFirst, typename Leaf>
+template <typename Bvh<Real, Width>::Visit kVisit, typename Leaf>
 void Bvh<Real, Width>::traverse(const OneRay& ray, C t1, Leaf leaf) const {
     if (items_.empty()) return;
     if (!ray.sloped)
         leaf(Child{0, static_cast<std::uint32_t>(items_.size())}, t1);
     else if (ray.guarded)
-        traverse<kNearestFirst, true>(ray.slab, t1, leaf);
+        traverse<kVisit, true>(ray.slab, t1, leaf);
     else
-        traverse<kNearestFirst, false>(ray.slab, t1, leaf);
+        traverse<kVisit, false>(ray.slab, t1, leaf);
 }
 
 // Down the tree from the root: at each node the ray goes on into the first child it
-// meets (the nearest where kNearestFirst) and leaves the others on the stack, so a
+// meets (the nearest where kVisit says so) and leaves the others on the stack, so a
 // node met by one child's box only costs no stack traffic (as Embree's traversal).
 template <typename Real, int Width>
-template <bool kNearestFirst, bool kGuarded, typename Leaf>
+template <typename Bvh<Real, Width>::Visit kVisit, bool kGuarded, typename Leaf>
 void Bvh<Real, Width>::traverse(const SlabRay<C>& ray, C t1, Leaf leaf) const {
     StackEntry stack[kStack];  // NOLINT(cppcoreguidelines-pro-type-member-init): written before read
     int size = 0;
@@ -41,7 +41,7 @@ void Bvh<Real, Width>::traverse(const SlabRay<C>& ray, C t1, Leaf leaf) const {
             if (mask == 0) break;
             int k = lowest_bit(mask);
             mask &= mask - 1;
-            if (!kNearestFirst) {
+            if (kVisit == Visit::AnyOrder) {
                 for (; mask != 0; mask &= mask - 1) stack[size++] = {node.child[lowest_bit(mask)], 0};
                 current = node.child[k];
                 continue;
@@ -87,7 +87,7 @@ void Bvh<Real, Width>::closest(EyeBlock<Real, Rows, Columns>& block) const {
     }
     auto descend = [&](const SlabRay<C>& part) {
         const C t1 = block.tried() ? C(block.farthest()) : std::numeric_limits<C>::infinity();
-        traverse<true, true>(part, t1, [&](Child leaf, C& t1) {
+        traverse<Visit::NearestFirst, true>(part, t1, [&](Child leaf, C& t1) {
             for (std::uint32_t i = leaf.first; i < leaf.first + leaf.count; ++i) {
                 const BuildBox<C> box = inflated_box<C>(items_[i]);
                 if (meets_box(part, box, t1)) block.add(items_[i], index_[i], &box);

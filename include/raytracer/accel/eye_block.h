@@ -36,7 +36,7 @@ namespace rt {
 // The eye rays of columns [first, last) of one row against one ellipsoid, the scene's
 // ellipsoid `index`: o is mapped_origin() of the camera, column_dx(c) gives
 // d'.x = x / s.x of column c, and dy, dz the row's d'.y = y / s.y, d'.z = near_z / s.z.
-// Each column's nearest hit so far (best_t: infinity, best: kNone before the first) is
+// Each column's nearest hit so far (best_t: infinity, best: kNoEllipsoid before the first) is
 // replaced where the ellipsoid shows a nearer root, or an equal one at a lower index.
 // Used by the tree's blocks (EyeBlock) and the flat sweep's rows (EyeRays).
 template <int kBlock, typename Real, typename ColumnDx>
@@ -60,7 +60,7 @@ RT_ALWAYS_INLINE void merge_eye_row(const MappedOrigin<Real>& o, ColumnDx column
         RT_VECTOR_LOOP
         for (int k = 0; k < n; ++k) {
             const int c = c0 + k;
-            // visible_root(), then NearestHit::replaced_by() (kNone is above any index).
+            // visible_root(), then NearestHit::replaced_by() (kNoEllipsoid is above any index).
             const bool in = !(near[k] > beyond);
             const Real root = in ? far[k] : near[k];
             const bool accept =
@@ -129,8 +129,8 @@ public:
         Real far = 0;
         for (int b = 0; b < rows_; ++b)
             for (int c = 0; c < Columns; ++c)
-                far = ellipsoid_[b][c] == kNone ? std::numeric_limits<Real>::infinity()
-                                                : std::max(far, t_[b][c]);
+                far = ellipsoid_[b][c] == kNoEllipsoid ? std::numeric_limits<Real>::infinity()
+                                                       : std::max(far, t_[b][c]);
         return far;
     }
 
@@ -166,8 +166,6 @@ public:
     }
 
 private:
-    static constexpr std::uint32_t kNone = NearestHit<Real>::kNone;
-
     // What the first add() needs: a block that meets no box (most of a course scene's
     // background) does without it.
     void set_up() {
@@ -182,7 +180,8 @@ private:
         inverse_z_ = inverse(near_z_);
         for (int b = 0; b < Rows; ++b)
             for (int c = 0; c < Columns; ++c)
-                t_[b][c] = std::numeric_limits<Real>::infinity(), ellipsoid_[b][c] = kNone, inside_[b][c] = 0;
+                t_[b][c] = std::numeric_limits<Real>::infinity(), ellipsoid_[b][c] = kNoEllipsoid,
+                inside_[b][c] = 0;
     }
 
     // Whether some eye ray of row b may meet the box before its pixel's nearest root:
@@ -208,7 +207,7 @@ private:
 
     Real x_[Columns], y_[Rows], near_z_;
     C x_lo_, x_hi_, margin_;  // the columns' range, and two pixels' spacing (0: one column)
-    // Each pixel's nearest hit so far: root t of ellipsoid (kNone: none yet), inside
+    // Each pixel's nearest hit so far: root t of ellipsoid (kNoEllipsoid: none yet), inside
     // when the far root was taken. As wide as the index: with mixed widths GCC's vector
     // code packs and unpacks the lanes.
     Real t_[Rows][Columns];

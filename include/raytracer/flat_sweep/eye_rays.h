@@ -23,6 +23,7 @@
 #include "raytracer/accel/eye_block.h"
 #include "raytracer/own_cache_lines.h"
 #include "raytracer/reference/ellipsoid.h"
+#include "raytracer/reference/spec_rules.h"
 #include "raytracer/vec3.h"
 
 namespace rt {
@@ -30,9 +31,8 @@ namespace rt {
 // Per column of the image (one per thread): the nearest hit found so far in the row.
 template <typename Real>
 struct EyeRowHits {
-    static constexpr std::uint32_t kNone = 0xFFFFFFFFU;
     OwnLinesVector<Real> t;                   // infinity until a hit is accepted
-    OwnLinesVector<std::uint32_t> ellipsoid;  // kNone until a hit is accepted
+    OwnLinesVector<std::uint32_t> ellipsoid;  // kNoEllipsoid until a hit is accepted
     // The far root was taken (0 or 1). As wide as the index: with mixed widths GCC's
     // vector code packs and unpacks the lanes (2.5 % more instructions on the course scenes).
     OwnLinesVector<std::uint32_t> inside;
@@ -74,7 +74,7 @@ public:
     static void clear(EyeRowHits<Real>& hits, int first, int last) {
         for (int c = first; c <= last; ++c) {
             hits.t[static_cast<std::size_t>(c)] = std::numeric_limits<Real>::infinity();
-            hits.ellipsoid[static_cast<std::size_t>(c)] = EyeRowHits<Real>::kNone;
+            hits.ellipsoid[static_cast<std::size_t>(c)] = kNoEllipsoid;
         }
     }
 

@@ -22,7 +22,7 @@ namespace rt {
 
 // The nearest hits of kPacket rays with t > min_t, ray k from (ox, oy, oz)[k] along
 // (dx, dy, dz)[k], as the reference finds them (BruteForce::closest(), every ellipsoid in
-// increasing order): index[k] is the ellipsoid (kNone for none), t[k] its root,
+// increasing order): index[k] is the ellipsoid (kNoEllipsoid for none), t[k] its root,
 // inside[k] whether the far root was taken.
 //
 // WHY: one culling pass over the bounding spheres for all rays
@@ -42,8 +42,7 @@ void Tracer<Real>::nearest_hits(const Real* ox, const Real* oy, const Real* oz, 
         ox, oy, oz, dx, dy, dz, lanes, scratch.candidates.data(), scratch.cull.data());
     min_t = visible_beyond(min_t);  // as in BruteForce::closest()
     Real best[N], found[N], far_root[N];
-    for (int k = 0; k < N; ++k)
-        best[k] = 0, found[k] = 0, far_root[k] = 0, index[k] = TraceScratch<Real>::kNone;
+    for (int k = 0; k < N; ++k) best[k] = 0, found[k] = 0, far_root[k] = 0, index[k] = kNoEllipsoid;
     for (std::size_t a = 0; a < count; ++a) {
         const std::uint32_t i = some_ray[a];
         const std::uint32_t set = lanes[i];
@@ -242,12 +241,12 @@ std::uint64_t Tracer<Real>::shadow_lanes(const HitPacket<Real, N>& p, LightLanes
         }
         if (blocked == 0) return;
         waiting &= ~blocked;
-        scratch.last_occluder[li] = static_cast<std::uint32_t>(j);
+        scratch.blockers[li] = static_cast<std::uint32_t>(j);
     };
     // The last blocker of this light first (neighbouring pixels share their shadows),
     // then the others in increasing order, until every lane is shadowed.
-    const std::uint32_t last = scratch.last_occluder[li];
-    if (last != TraceScratch<Real>::kNone && may_block.contains(last)) {
+    const std::uint32_t last = scratch.blockers[li];
+    if (last != kNoEllipsoid && may_block.contains(last)) {
         try_ellipsoid(last);
         may_block.erase(last);
     }
@@ -277,7 +276,7 @@ void Tracer<Real>::reflections(HitPacket<Real, N>& p, Real kr, int reflections_l
     const Bits counted = (Bits(1) << p.count) - 1;  // p.count <= N <= 32
     Bits waiting = 0;  // the lanes whose mirrored rays hit something not yet shaded
     RT_VECTOR_LOOP
-    for (int k = 0; k < N; ++k) waiting |= next[k] != TraceScratch<Real>::kNone ? kLane[k] : 0;
+    for (int k = 0; k < N; ++k) waiting |= next[k] != kNoEllipsoid ? kLane[k] : 0;
     waiting &= counted;
     while (waiting != 0) {
         const int k = lowest_bit(waiting);

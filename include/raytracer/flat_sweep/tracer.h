@@ -22,17 +22,12 @@
 #include "raytracer/image.h"
 #include "raytracer/own_cache_lines.h"
 #include "raytracer/reference/ellipsoid.h"
+#include "raytracer/reference/shading.h"
 #include "raytracer/reference/spec_rules.h"
 #include "raytracer/scene.h"
 #include "raytracer/vec3.h"
 
 namespace rt {
-
-template <typename Real>
-struct PointLight {
-    Vec3<Real> position;
-    Vec3<Real> intensity;
-};
 
 // Per-thread working memory of a Tracer, so that no ray allocates: the candidate lists
 // of the bounding-sphere culling and, per light, the ellipsoid that last blocked it; on
@@ -41,9 +36,8 @@ template <typename Real>
 struct TraceScratch {
     OwnLinesVector<std::uint32_t> candidates;
     OwnLinesVector<typename SphereBounds<Real>::C> cull;  // per ellipsoid: culled when not 0
-    OwnLinesVector<std::uint32_t> last_occluder;          // per light; kNone when none yet
-    OwnLinesVector<std::uint32_t> lanes;                  // per ellipsoid: the rays that may hit it
-    static constexpr std::uint32_t kNone = 0xFFFFFFFFU;
+    OwnLinesVector<std::uint32_t> blockers;  // per light, the last blocker; kNoEllipsoid before any
+    OwnLinesVector<std::uint32_t> lanes;     // per ellipsoid: the rays that may hit it
 };
 
 template <typename Real>
@@ -112,7 +106,7 @@ public:
         TraceScratch<Real> s;
         s.candidates.resize(ellipsoids_.size());
         s.cull.resize(ellipsoids_.size());
-        s.last_occluder.assign(lights_.size(), TraceScratch<Real>::kNone);
+        s.blockers.assign(lights_.size(), kNoEllipsoid);
         s.lanes.resize(ellipsoids_.size());
         return s;
     }

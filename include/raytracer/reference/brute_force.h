@@ -41,7 +41,7 @@ public:
 
     // Whether some ellipsoid blocks the shadow ray from point to the light at
     // point + to_light (spec_rules.h). blocker: the one that blocked last, tried first
-    // (kNoBlocker for none), and set to the one found; the answer is the same whichever
+    // (kNoEllipsoid for none), and set to the one found; the answer is the same whichever
     // is tried first.
     bool occluded(const V& point, const V& to_light, std::uint32_t& blocker) const {
         const std::vector<Ellipsoid<Real>>& all = ellipsoids_;

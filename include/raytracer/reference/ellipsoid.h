@@ -74,7 +74,7 @@ Roots<Real> intersect_mapped(const Ellipsoid<Real>& e, const MappedOrigin<Real>&
                              const Vec3<Real>& direction) {
     const Vec3<Real> d = direction / e.scale;
     const UnitLine<Real> line = unit_line(m.o.x, m.o.y, m.o.z, d.x, d.y, d.z);
-    if (line.hit == 0) return {};  // a lane of the vector paths computes on and drops the roots
+    if (line.hit == 0) return {};  // the line misses the unit sphere
     const UnitRoots<Real> r = unit_roots(line, m.c);
     return {true, r.near, r.far};
 }
@@ -82,12 +82,6 @@ Roots<Real> intersect_mapped(const Ellipsoid<Real>& e, const MappedOrigin<Real>&
 template <typename Real>
 Roots<Real> intersect(const Ellipsoid<Real>& e, const Vec3<Real>& origin, const Vec3<Real>& direction) {
     return intersect_mapped(e, mapped_origin(e, origin), direction);
-}
-
-// The unit outward normal at a point P on the surface.
-template <typename Real>
-Vec3<Real> outward_normal(const Ellipsoid<Real>& e, const Vec3<Real>& point) {
-    return normalize((point - e.centre) / e.scale_squared);
 }
 
 }  // namespace rt

@@ -21,6 +21,12 @@
 
 namespace rt {
 
+// A LIGHT of the scene in the renderer's precision.
+template <typename Real>
+struct PointLight {
+    Vec3<Real> position, intensity;
+};
+
 // What shading needs of an ellipsoid's material, per ray for lanes.
 template <typename T>
 struct Finish {

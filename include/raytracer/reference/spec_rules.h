@@ -50,9 +50,10 @@ std::vector<Real> column_xs(const Scene& scene) {
 // 3-4-5 triangle), which double rounding puts 2 ulps above 1. The ulps are those of
 // the scene's double numbers, whatever Real is (scene_precision.h), so that long double
 // decides these pixels as double does.
+inline constexpr int kRootUlps = 8;  // a root this many scene ulps from a bound is at it
 template <typename Real>
 Real visible_beyond(Real min_t) {
-    return min_t * (Real(1) + Real(8) * scene_epsilon<Real>());
+    return min_t * (Real(1) + Real(kRootUlps) * scene_epsilon<Real>());
 }
 
 // The root a ray sees of an ellipsoid it meets, given visible_beyond(): the near root
@@ -68,14 +69,14 @@ bool visible_root(const Roots<Real>& r, Real beyond, Real& t, bool& inside) {
 
 // The shadow rule of SPEC section 5: ellipsoid e blocks the light when the segment from
 // the lit point to the light, point + t (light - point), meets it at 0.001 < t < 1. Its
-// ends are decided as the near plane is: a root within 8 scene ulps of 0.001 or of the
+// ends are decided as the near plane is: a root within kRootUlps of 0.001 or of the
 // light (t = 1) is at it and does not block; a light on the surface itself gets a root
 // of exactly 1 (unit_sphere_roots.h). So every precision decides a light on a surface
 // as exact arithmetic does.
 template <typename Real>
 bool blocks_segment(const Roots<Real>& r) {
     const Real min_t = visible_beyond(Real(kShadowRayMinT));
-    const Real max_t = Real(1) - Real(8) * scene_epsilon<Real>();
+    const Real max_t = Real(1) - Real(kRootUlps) * scene_epsilon<Real>();
     return r.hit && ((r.near > min_t && r.near < max_t) || (r.far > min_t && r.far < max_t));
 }
 template <typename Real>
@@ -91,20 +92,20 @@ bool specular_is_zero(const Ellipsoid<Real>& e) {
     return e.ks == 0 && e.shininess >= 0 && e.shininess <= Real(1e6);
 }
 
-// A geometry's hint for its any-hit query: which ellipsoid to try first (one that
-// blocked a shadow ray to this light before: whitted.h, blocker_hints.h); kNoBlocker
-// before any.
-inline constexpr std::uint32_t kNoBlocker = 0xFFFFFFFFU;
+// No ellipsoid, in place of an ellipsoid's index: a closest-hit query's answer when the
+// ray hits nothing, and a geometry's hint for its any-hit query (which ellipsoid to try
+// first: one that blocked a shadow ray to this light before, whitted.h,
+// blocker_hints.h) before any. Above every index.
+inline constexpr std::uint32_t kNoEllipsoid = 0xFFFFFFFFU;
 
 // The answer of a closest-hit query: the ellipsoid a ray sees first, at t.
 template <typename Real>
 struct NearestHit {
-    static constexpr std::uint32_t kNone = 0xFFFFFFFFU;
     Real t = 0;
-    std::uint32_t ellipsoid = kNone;
+    std::uint32_t ellipsoid = kNoEllipsoid;
     bool inside = false;  // the far root was taken: the ray sees the inside
 
-    bool found() const { return ellipsoid != kNone; }
+    bool found() const { return ellipsoid != kNoEllipsoid; }
     // Whether root t of ellipsoid i is to replace this hit. Equal roots go to the lower
     // index, as in a loop over the ellipsoids in the file's order, whatever order a
     // query visits them in.

@@ -57,12 +57,12 @@ public:
     Real row_y(int r) const { return pixel_y(top_, bottom_, r, rows_); }
 
     // A thread's working memory: per light, the ellipsoid its last shadow ray was blocked
-    // by, which the geometry tries first for the next (spec_rules.h): neighbouring pixels
+    // by, which the geometry tries first for the next (its occluded()): neighbouring pixels
     // are mostly blocked by the same one. It never changes an answer.
     struct Scratch {
         std::vector<std::uint32_t> blockers;
     };
-    Scratch make_scratch() const { return {std::vector<std::uint32_t>(lights_.size(), kNoBlocker)}; }
+    Scratch make_scratch() const { return {std::vector<std::uint32_t>(lights_.size(), kNoEllipsoid)}; }
 
     // The three bytes of the pixel whose eye ray goes from the camera through (x, y).
     void pixel(Real x, Real y, std::uint8_t* out, Scratch& scratch) const {
@@ -114,12 +114,8 @@ public:
     Real near_z() const { return near_z_; }
 
 private:
-    struct Light {
-        V position, intensity;
-    };
-
     Geometry geometry_;  // holds the ellipsoids
-    std::vector<Light> lights_;
+    std::vector<PointLight<Real>> lights_;
     LargeVector<Material> materials_;  // per ellipsoid
     V background_;
     Real left_, right_, bottom_, top_, near_z_;
