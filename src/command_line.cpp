@@ -25,6 +25,11 @@ bool parse_threads(const std::string& text, unsigned& threads) {
 
 // The options that take a value: their long and short names.
 bool takes_value(std::string_view name) { return name == "--threads" || name == "--output" || name == "-o"; }
+// The options that take none.
+bool is_flag(std::string_view name) {
+    return name == "--progress" || name == "--quiet" || name == "--reference" || name == "--help" ||
+           name == "-h" || name == "--version";
+}
 
 struct Parser {
     CommandLine line;
@@ -88,7 +93,7 @@ struct Parser {
             const std::size_t equals = arg.rfind("--", 0) == 0 ? arg.find('=') : std::string::npos;
             const std::string name = arg.substr(0, equals);
             if (!takes_value(name)) {
-                if (equals != std::string::npos)
+                if (equals != std::string::npos && is_flag(name))
                     return wrong(shown(name) + " takes no value, expected " + name);
                 if (!option(name, nullptr)) return false;
                 continue;

@@ -162,9 +162,10 @@ public:
         } else if (kind == K::Res) {
             const long long columns = f.counts[0], rows = f.counts[1];
             if (columns > kMaxImageSide || rows > kMaxImageSide || columns * rows > kMaxImagePixels) {
-                fail(line, "RES " + std::to_string(columns) + " " + std::to_string(rows) +
-                               " is too large, expected at most " + std::to_string(kMaxImageSide) +
-                               " a side and " + std::to_string(kMaxImagePixels) + " pixels");
+                fail(line, "RES " + escaped(f.raw[0], kMaxShownToken) + " " +
+                               escaped(f.raw[1], kMaxShownToken) + " is too large, expected at most " +
+                               std::to_string(kMaxImageSide) + " a side and " +
+                               std::to_string(kMaxImagePixels) + " pixels");
             }
             scene.columns = static_cast<int>(columns);
             scene.rows = static_cast<int>(rows);

@@ -152,6 +152,7 @@ TEST(a_wrong_command_line_exits_2_with_one_line_on_stderr) {
         {{"scene.txt", "-o"}, "-o without a value"},
         {{"scene.txt", "--output="}, "--output with an empty path"},
         {{"--quiet=1", "scene.txt"}, "'--quiet' takes no value"},
+        {{"--thr=2", "scene.txt"}, "unknown option '--thr'"},
         {{"--threads", "2", "scene.txt", "--threads=3"},
          "--threads given twice ('2' and '3'), expected it once"},
         {{"-o", "a.ppm", "scene.txt", "--output", "b.ppm"},
