@@ -26,7 +26,12 @@ char cleanup_path[kMaxPath];
 wchar_t cleanup_wide_path[kMaxPath];
 #endif
 volatile std::sig_atomic_t cleanup_set = 0;  // 1: cleanup_path, 2: cleanup_wide_path
+// "\r", as many spaces as the progress line has characters, "\r": a line is erased by
+// overwriting it, which every terminal and the Windows console understand (an ANSI
+// "erase line" is not understood by older consoles). Set before erase_line is raised.
+char erase_text[kMaxErasedLine + 3];
 volatile std::sig_atomic_t erase_line = 0;
+volatile std::sig_atomic_t output_is_stream = 0;
 
 void say(const char* text) {
 #ifdef _WIN32
@@ -43,7 +48,7 @@ extern "C" void render_on_interrupt(int signal_number) {
 #else
     if (cleanup_set != 0) (void)unlink(cleanup_path);
 #endif
-    if (erase_line != 0) say(kEraseLine);
+    if (erase_line != 0) say(erase_text);
     const char* name = "a signal";
     if (signal_number == SIGINT) name = "SIGINT";
     if (signal_number == SIGTERM) name = "SIGTERM";
@@ -52,24 +57,29 @@ extern "C" void render_on_interrupt(int signal_number) {
 #endif
     say("raytracer.exe: error: interrupted by ");
     say(name);
-    say(", no image written\n");
+    say(output_is_stream != 0 ? ", the image written so far is incomplete\n" : ", no image written\n");
     _exit(128 + signal_number);
 }
 
 }  // namespace
 
+// A signal ignored when the program started stays ignored (nohup, a shell's background
+// job, a script's trap '' TERM), as POSIX asks of interactive programs' handlers.
 void install_interrupt_handlers() {
 #ifdef _WIN32
-    (void)std::signal(SIGINT, render_on_interrupt);
-    (void)std::signal(SIGTERM, render_on_interrupt);
-    (void)std::signal(SIGBREAK, render_on_interrupt);
+    for (const int s : {SIGINT, SIGTERM, SIGBREAK})
+        if (std::signal(s, render_on_interrupt) == SIG_IGN) (void)std::signal(s, SIG_IGN);
 #else
     struct sigaction action {};
     action.sa_handler = render_on_interrupt;
     sigemptyset(&action.sa_mask);
     // One handler at a time: a second signal waits until the first has exited.
     for (const int s : {SIGINT, SIGTERM, SIGHUP}) (void)sigaddset(&action.sa_mask, s);
-    for (const int s : {SIGINT, SIGTERM, SIGHUP}) (void)sigaction(s, &action, nullptr);
+    for (const int s : {SIGINT, SIGTERM, SIGHUP}) {
+        struct sigaction before {};
+        if (sigaction(s, nullptr, &before) == 0 && before.sa_handler == SIG_IGN) continue;
+        (void)sigaction(s, &action, nullptr);
+    }
     (void)std::signal(SIGXFSZ, SIG_IGN);
 #endif
 }
@@ -98,6 +108,18 @@ bool set_interrupt_cleanup(const wchar_t* path) {
 }
 #endif
 
-void set_interrupt_erases_line(bool erase) { erase_line = erase ? 1 : 0; }
+void set_interrupt_erases_line(int length) {
+    erase_line = 0;
+    if (length <= 0) return;
+    const auto n = static_cast<std::size_t>(length < kMaxErasedLine ? length : kMaxErasedLine);
+    erase_text[0] = '\r';
+    std::memset(erase_text + 1, ' ', n);
+    erase_text[n + 1] = '\r';
+    erase_text[n + 2] = '\0';
+    std::atomic_signal_fence(std::memory_order_seq_cst);  // the text is complete before the flag
+    erase_line = 1;
+}
+
+void set_interrupt_output_is_stream(bool stream) { output_is_stream = stream ? 1 : 0; }
 
 }  // namespace rt

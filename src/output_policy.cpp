@@ -13,6 +13,7 @@
 #include <windows.h>
 #else
 #include <sys/stat.h>
+#include <unistd.h>
 #endif
 
 namespace rt {
@@ -24,20 +25,31 @@ namespace fs = std::filesystem;
 enum class Existing { Nothing, RegularFile, Folder, Other };
 
 #ifdef _WIN32
-// The same file whatever the names: volume and file index (hard links, case, 8.3 names).
+// A file's identity whatever its names: volume and file index (hard links, case, 8.3 names).
+bool identity(const std::string& name, BY_HANDLE_FILE_INFORMATION& info) {
+    const HANDLE h = CreateFileW(fs::u8path(name).c_str(), FILE_READ_ATTRIBUTES,
+                                 FILE_SHARE_READ | FILE_SHARE_WRITE | FILE_SHARE_DELETE, nullptr,
+                                 OPEN_EXISTING, FILE_FLAG_BACKUP_SEMANTICS, nullptr);
+    if (h == INVALID_HANDLE_VALUE) return false;
+    const bool ok = GetFileInformationByHandle(h, &info) != 0;
+    CloseHandle(h);
+    return ok;
+}
+bool same_identity(const BY_HANDLE_FILE_INFORMATION& x, const BY_HANDLE_FILE_INFORMATION& y) {
+    return x.dwVolumeSerialNumber == y.dwVolumeSerialNumber && x.nFileIndexHigh == y.nFileIndexHigh &&
+           x.nFileIndexLow == y.nFileIndexLow;
+}
+
 bool same_file(const std::string& a, const std::string& b) {
-    auto identity = [](const std::string& name, BY_HANDLE_FILE_INFORMATION& info) {
-        const HANDLE h = CreateFileW(fs::u8path(name).c_str(), FILE_READ_ATTRIBUTES,
-                                     FILE_SHARE_READ | FILE_SHARE_WRITE | FILE_SHARE_DELETE, nullptr,
-                                     OPEN_EXISTING, FILE_FLAG_BACKUP_SEMANTICS, nullptr);
-        if (h == INVALID_HANDLE_VALUE) return false;
-        const bool ok = GetFileInformationByHandle(h, &info) != 0;
-        CloseHandle(h);
-        return ok;
-    };
     BY_HANDLE_FILE_INFORMATION x{}, y{};
-    return identity(a, x) && identity(b, y) && x.dwVolumeSerialNumber == y.dwVolumeSerialNumber &&
-           x.nFileIndexHigh == y.nFileIndexHigh && x.nFileIndexLow == y.nFileIndexLow;
+    return identity(a, x) && identity(b, y) && same_identity(x, y);
+}
+
+bool standard_output_is(const std::string& file) {
+    BY_HANDLE_FILE_INFORMATION x{}, y{};
+    const HANDLE out = GetStdHandle(STD_OUTPUT_HANDLE);
+    return out != INVALID_HANDLE_VALUE && out != nullptr && GetFileInformationByHandle(out, &x) != 0 &&
+           identity(file, y) && same_identity(x, y);
 }
 
 Existing what_is_at(const std::string& path) {
@@ -53,6 +65,13 @@ bool same_file(const std::string& a, const std::string& b) {
     struct stat x {
     }, y{};
     return ::stat(a.c_str(), &x) == 0 && ::stat(b.c_str(), &y) == 0 && x.st_dev == y.st_dev &&
+           x.st_ino == y.st_ino;
+}
+
+bool standard_output_is(const std::string& file) {
+    struct stat x {
+    }, y{};
+    return ::fstat(STDOUT_FILENO, &x) == 0 && ::stat(file.c_str(), &y) == 0 && x.st_dev == y.st_dev &&
            x.st_ino == y.st_ino;
 }
 
@@ -109,6 +128,10 @@ OutputChoice choose_output(const std::string& scene_output, const std::string* u
     choice.path = choice.named_by_user ? *user_output : scene_output;
     if (choice.named_by_user && choice.path == "-") {
         choice.destination = Destination::StandardOutput;
+        // raytracer.exe -o - scene.txt >> scene.txt
+        if (standard_output_is(scene_file))
+            choice.refusal =
+                "- (standard output) is the scene file itself, expected another file for the image";
         return choice;
     }
     if (!choice.named_by_user) {

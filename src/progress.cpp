@@ -1,13 +1,19 @@
 #include "raytracer/progress.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <string>
 
 #include "raytracer/interrupts.h"
 
 #ifdef _WIN32
+#ifndef NOMINMAX
+#define NOMINMAX
+#endif
 #include <io.h>
+#include <windows.h>
 #else
+#include <sys/ioctl.h>
 #include <unistd.h>
 #endif
 
@@ -26,6 +32,19 @@ std::string seconds(double s) {
     return text;
 }
 
+// The columns of the terminal stderr shows, or 80 where the system does not say.
+int terminal_columns() {
+#ifdef _WIN32
+    CONSOLE_SCREEN_BUFFER_INFO info{};
+    if (GetConsoleScreenBufferInfo(GetStdHandle(STD_ERROR_HANDLE), &info) != 0)
+        return info.srWindow.Right - info.srWindow.Left + 1;
+#else
+    winsize size{};
+    if (ioctl(STDERR_FILENO, TIOCGWINSZ, &size) == 0 && size.ws_col > 0) return size.ws_col;
+#endif
+    return 80;
+}
+
 }  // namespace
 
 bool is_terminal(std::FILE* stream) {
@@ -41,7 +60,11 @@ ProgressSink::ProgressSink(RowSink& inner, int total_rows, bool enabled)
       total_(total_rows),
       enabled_(enabled),
       start_(std::chrono::steady_clock::now()),
-      next_draw_(start_ + kFirstAfter) {}
+      next_draw_(start_ + kFirstAfter) {
+    // One column short of the width: a line that fills the last column wraps on some
+    // terminals.
+    if (enabled_) width_ = std::min(terminal_columns() - 1, kMaxErasedLine);
+}
 
 void ProgressSink::rows_finished(int count) {
     if (!enabled_) return;
@@ -57,21 +80,33 @@ void ProgressSink::draw(std::chrono::steady_clock::duration elapsed) {
     const double fraction = total_ <= 0 ? 1.0 : static_cast<double>(done_) / static_cast<double>(total_);
     const double left = fraction > 0 ? spent * (1 - fraction) / fraction : 0;
     char line[96];
-    (void)std::snprintf(line, sizeof line, "\rraytracer.exe: %3d%% of rows, %s elapsed, about %s left ",
-                        static_cast<int>(fraction * 100), seconds(spent).c_str(), seconds(left).c_str());
-    (void)std::fputs(drawn_ ? kEraseLine : "\r", stderr);
+    const int length =
+        std::snprintf(line, sizeof line, "raytracer.exe: %3d%% of rows, %s elapsed, about %s left",
+                      static_cast<int>(fraction * 100), seconds(spent).c_str(), seconds(left).c_str());
+    const int shown = std::min({length, width_, static_cast<int>(sizeof line) - 1});
+    if (shown <= 0) return;
+    line[shown] = '\0';
+    erase();  // or, the first time, go to the start of the line
     (void)std::fputs(line, stderr);
     (void)std::fflush(stderr);
-    if (!drawn_) set_interrupt_erases_line(true);
-    drawn_ = true;
+    drawn_ = shown;
+    set_interrupt_erases_line(drawn_);
+}
+
+// Goes to the start of the line, overwriting the line drawn, if any, with spaces.
+void ProgressSink::erase() const {
+    (void)std::fputc('\r', stderr);
+    if (drawn_ == 0) return;
+    for (int i = 0; i < drawn_; ++i) (void)std::fputc(' ', stderr);
+    (void)std::fputc('\r', stderr);
 }
 
 void ProgressSink::finish() {
-    if (!drawn_) return;
-    (void)std::fputs(kEraseLine, stderr);
+    if (drawn_ == 0) return;
+    erase();
     (void)std::fflush(stderr);
-    set_interrupt_erases_line(false);
-    drawn_ = false;
+    set_interrupt_erases_line(0);
+    drawn_ = 0;
 }
 
 }  // namespace rt

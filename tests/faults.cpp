@@ -8,6 +8,7 @@
 TEST(posix_faults_are_skipped_on_windows) { std::cout << "skip  faults: POSIX processes and signals\n"; }
 #else
 #include <fcntl.h>
+#include <sys/ioctl.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -100,10 +101,12 @@ std::string slow_scene(const std::string& output) {
 }
 
 struct Options {
-    bool named_temporary = false;   // RAYTRACER_NAMED_TEMPORARY: the fallback of other systems
-    long file_size_limit = -1;      // RLIMIT_FSIZE in bytes; -1: none
-    int stderr_fd = -1;             // where the child's stderr goes; -1: the capture file
-    long address_space_limit = -1;  // RLIMIT_AS in bytes; -1: none
+    bool named_temporary = false;         // RAYTRACER_NAMED_TEMPORARY: the fallback of other systems
+    long file_size_limit = -1;            // RLIMIT_FSIZE in bytes; -1: none
+    int stderr_fd = -1;                   // where the child's stderr goes; -1: the capture file
+    int stdout_fd = -1;                   // where the child's stdout goes; -1: the capture file
+    long address_space_limit = -1;        // RLIMIT_AS in bytes; -1: none
+    bool ignore_hangup_and_term = false;  // started as nohup and trap '' TERM start it
 };
 
 // Starts raytracer.exe with args in folder.work; stdout and stderr go to files in root.
@@ -119,7 +122,8 @@ pid_t start(const Scratch& folder, const std::vector<std::string>& args, const O
     const pid_t pid = fork();
     if (pid != 0) return pid;
     // The child: only calls that are safe after fork, then exec.
-    const int out_fd = open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int out_fd =
+        options.stdout_fd >= 0 ? options.stdout_fd : open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     const int err_fd =
         options.stderr_fd >= 0 ? options.stderr_fd : open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     if (chdir(work.c_str()) != 0 || out_fd < 0 || err_fd < 0) _exit(126);
@@ -136,6 +140,7 @@ pid_t start(const Scratch& folder, const std::vector<std::string>& args, const O
         setrlimit(RLIMIT_AS, &limit);
     }
     if (options.named_temporary) setenv("RAYTRACER_NAMED_TEMPORARY", "1", 1);
+    if (options.ignore_hangup_and_term) signal(SIGHUP, SIG_IGN), signal(SIGTERM, SIG_IGN);
     execv(argv[0], argv.data());
     _exit(127);
 }
@@ -194,6 +199,42 @@ TEST(an_interrupted_render_leaves_nothing_and_exits_128_plus_the_signal) {
             CHECK_EQ(read_bytes(folder.work / "out.ppm"), kPrecious);
         }
     }
+}
+
+// Started with SIGHUP and SIGTERM ignored (nohup, trap '' TERM), the render ignores them
+// too and completes; SIGINT, not ignored, still interrupts it.
+TEST(signals_ignored_at_start_stay_ignored) {
+    const Scratch folder;
+    write_bytes(folder.work / "slow.txt", slow_scene("out.ppm"));
+    Options options;
+    options.ignore_hangup_and_term = true;
+    pid_t pid = start(folder, {"slow.txt"}, options);
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    kill(pid, SIGHUP);
+    kill(pid, SIGTERM);
+    CHECK_EQ(wait_for(pid), 0);
+    CHECK_EQ(captured_stderr(folder), std::string());
+    CHECK_EQ(read_bytes(folder.work / "out.ppm").size(), std::size_t{17 + 3 * kSlowRes * kSlowRes});
+    pid = start(folder, {"slow.txt", "-o", "second.ppm"}, options);
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    kill(pid, SIGINT);
+    CHECK_EQ(wait_for(pid), 128 + SIGINT);
+    CHECK_EQ(folder.names(), std::string("out.ppm slow.txt"));
+}
+
+// An image going straight to standard output may be partly out when interrupted: the
+// message says so rather than "no image written".
+TEST(an_interrupted_render_to_standard_output_says_the_image_is_incomplete) {
+    const Scratch folder;
+    write_bytes(folder.work / "slow.txt", slow_scene("out.ppm"));
+    const pid_t pid = start(folder, {"slow.txt", "-o", "-"});
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    kill(pid, SIGINT);
+    CHECK_EQ(wait_for(pid), 128 + SIGINT);
+    CHECK_EQ(
+        captured_stderr(folder),
+        std::string("raytracer.exe: error: interrupted by SIGINT, the image written so far is incomplete\n"));
+    CHECK_EQ(folder.names(), std::string("slow.txt"));
 }
 
 #ifdef __linux__
@@ -338,6 +379,23 @@ TEST(output_naming_the_scene_through_a_link_is_refused) {
 }
 
 // A folder on the way that is a symbolic link out of the working folder is outside it.
+// raytracer.exe -o - scene.txt >> scene.txt: standard output is the scene file itself,
+// refused before anything is written to it.
+TEST(standard_output_into_the_scene_file_is_refused) {
+    const Scratch folder;
+    const std::string scene = small_scene("out.ppm");
+    write_bytes(folder.work / "scene.txt", scene);
+    Options options;
+    options.stdout_fd = open((folder.work / "scene.txt").c_str(), O_WRONLY | O_APPEND);
+    CHECK(options.stdout_fd >= 0);
+    CHECK_EQ(run(folder, {"-o", "-", "scene.txt"}, options), 3);
+    close(options.stdout_fd);
+    CHECK_EQ(captured_stderr(folder),
+             std::string("raytracer.exe: error: -o - (standard output) is the scene file itself, expected "
+                         "another file for the image\n"));
+    CHECK_EQ(read_bytes(folder.work / "scene.txt"), scene);
+}
+
 TEST(a_symbolic_link_out_of_the_working_folder_is_outside_it) {
     const Scratch folder;
     fs::create_directories(folder.root / "elsewhere");
@@ -357,18 +415,21 @@ TEST(a_symbolic_link_out_of_the_working_folder_is_outside_it) {
     CHECK(fs::exists(folder.work / "inside" / "out.ppm"));
 }
 
-// On a terminal, a render past a second shows one line kept up to date, erased at the
-// end: no newline at all. The terminal is a pseudo-terminal the test reads.
-TEST(a_long_render_shows_progress_on_a_terminal_only) {
+// What a render of the slow scene on one thread shows on a pseudo-terminal of this many
+// columns (0: the size left unset), read until the render ends.
+std::string progress_on_terminal(const Scratch& folder, unsigned short columns) {
     const int master = posix_openpt(O_RDWR | O_NOCTTY);
     CHECK(master >= 0 && grantpt(master) == 0 && unlockpt(master) == 0);
     const int terminal = open(ptsname(master), O_RDWR | O_NOCTTY);
     CHECK(terminal >= 0);
-    const Scratch folder;
-    // One thread, so that the render takes seconds even on a faster machine.
-    write_bytes(folder.work / "slow.txt", slow_scene("out.ppm"));
+    if (columns > 0) {
+        winsize size{};
+        size.ws_col = columns, size.ws_row = 24;
+        CHECK_EQ(ioctl(terminal, TIOCSWINSZ, &size), 0);
+    }
     Options options;
     options.stderr_fd = terminal;
+    // One thread, so that the render takes seconds even on a faster machine.
     const pid_t pid = start(folder, {"--threads", "1", "slow.txt"}, options);
     close(terminal);
     std::string shown;
@@ -377,12 +438,32 @@ TEST(a_long_render_shows_progress_on_a_terminal_only) {
         shown.append(buffer, static_cast<std::size_t>(got));
     close(master);
     CHECK_EQ(wait_for(pid), 0);
+    CHECK_EQ(read_bytes(folder.work / "out.ppm").size(), std::size_t{17 + 3 * kSlowRes * kSlowRes});
+    return shown;
+}
+
+// On a terminal, a render past a second shows one line kept up to date, erased at the
+// end: no newline at all, and never wider than the terminal (a wider one would wrap and
+// leave its start behind).
+TEST(a_long_render_shows_progress_on_a_terminal_only) {
+    const Scratch folder;
+    write_bytes(folder.work / "slow.txt", slow_scene("out.ppm"));
+    std::string shown = progress_on_terminal(folder, 0);
     if (shown.find("% of rows, ") == std::string::npos) std::cout << "on the terminal: '" << shown << "'\n";
     CHECK(shown.find("% of rows, ") != std::string::npos);
     CHECK(shown.find(" elapsed, about ") != std::string::npos);
     CHECK(shown.find('\n') == std::string::npos);
     CHECK(shown.size() > 2 && shown.substr(shown.size() - 2) == " \r");  // erased: blanks, back to the start
-    CHECK_EQ(read_bytes(folder.work / "out.ppm").size(), std::size_t{17 + 3 * kSlowRes * kSlowRes});
+
+    shown = progress_on_terminal(folder, 30);
+    CHECK(shown.find("raytracer.exe: ") != std::string::npos);
+    std::size_t widest = 0;
+    for (std::size_t at = 0, next; at < shown.size(); at = next + 1) {
+        next = std::min(shown.find('\r', at), shown.size());
+        widest = std::max(widest, next - at);
+    }
+    CHECK_EQ(widest, std::size_t{29});
+    CHECK(shown.find('\n') == std::string::npos);
 
     // Not a terminal (a grader's pipe or file): nothing, unless --progress forces it.
     CHECK_EQ(run(folder, {"--threads", "1", "slow.txt"}), 0);

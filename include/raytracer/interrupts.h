@@ -1,6 +1,7 @@
 // What an interrupted run (SIGINT, SIGTERM, SIGHUP; Ctrl+C and Ctrl+Break on Windows)
 // does: removes the named temporary file being written, if any, prints one line saying
-// so, and exits with 128 + the signal's number. SIGXFSZ is ignored, so that a file-size
+// so, and exits with 128 + the signal's number. A signal that was ignored when the
+// program started (nohup) stays ignored. SIGXFSZ is ignored, so that a file-size
 // limit (ulimit -f) makes a write fail, reported like a full disk, instead of killing
 // the process silently.
 #pragma once
@@ -20,13 +21,12 @@ bool set_interrupt_cleanup(const wchar_t* path);  // any Unicode path
 // No file for a handler to remove (it has been removed, or renamed into place).
 void clear_interrupt_cleanup();
 
-// Whether a progress line is on the terminal: a handler erases it before its message.
-void set_interrupt_erases_line(bool erase);
-
-// Erases a line by overwriting it with spaces, which every terminal and the Windows
-// console understand (an ANSI "erase line" is not understood by older consoles). Every
-// progress line drawn is shorter.
-inline constexpr const char* kEraseLine =
-    "\r                                                                               \r";
+// The length of the progress line on the terminal (0: none): a handler erases that
+// many characters before its message. At most kMaxErasedLine.
+inline constexpr int kMaxErasedLine = 160;
+void set_interrupt_erases_line(int length);
+// Whether the image goes straight to a stream (standard output, a FIFO, a device), so
+// that part of it may already be out: the message says it is incomplete.
+void set_interrupt_output_is_stream(bool stream);
 
 }  // namespace rt

@@ -1,8 +1,8 @@
 // A progress line for long renders: when stderr is a terminal and the render has run
 // past a second, one line kept up to date (percent of rows, elapsed, estimate left),
-// erased at the end. A RowSink in front of the real one, told of finished rows on the
-// thread that writes (row_ring.h): one clock reading per call, a redraw at most four
-// times a second, no locks, no thread of its own.
+// cut to the terminal's width so that it never wraps, erased at the end. A RowSink in front of the real one,
+// told of finished rows on the thread that writes (row_ring.h): one clock reading per call, a redraw at most
+// four times a second, no locks, no thread of its own.
 #pragma once
 
 #include <chrono>
@@ -32,11 +32,14 @@ public:
 private:
     void draw(std::chrono::steady_clock::duration elapsed);
 
+    void erase() const;
+
     RowSink& inner_;
     const int total_;
     int done_ = 0;
     const bool enabled_;
-    bool drawn_ = false;
+    int width_ = 0;  // the longest line that fits the terminal
+    int drawn_ = 0;  // the length of the line on the terminal; 0: none
     std::chrono::steady_clock::time_point start_, next_draw_;
 };
 
