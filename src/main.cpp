@@ -14,6 +14,7 @@
 #include "raytracer/progress.h"
 #include "raytracer/render.h"
 #include "raytracer/scene_error.h"
+#include "raytracer/scene_scale.h"
 #include "raytracer/shown.h"
 #include "raytracer/version.h"
 
@@ -138,7 +139,8 @@ int main(int argc, char** argv) {
         std::size_t ellipsoids = 0, lights = 0;
     } size;
     try {
-        const rt::Scene scene = rt::load_scene(line.scene_file);
+        rt::Scene scene = rt::load_scene(line.scene_file);
+        rt::bring_lengths_near_one(scene);  // a scene drawn at 1e160 renders as at 1
         size = {true, scene.columns, scene.rows, scene.spheres.size(), scene.lights.size()};
         return render(line, scene);
     } catch (const rt::SceneError& e) {

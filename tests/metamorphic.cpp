@@ -12,6 +12,7 @@
 #include "check.h"
 #include "precision.h"
 #include "raytracer/parser.h"
+#include "raytracer/scene_scale.h"
 #include "scene_transforms.h"
 
 namespace fs = std::filesystem;
@@ -74,6 +75,42 @@ TEST(scaling_by_a_power_of_two_changes_no_pixel) {
             CHECK_EQ(d, 0);
         }
     }
+}
+
+// Scaled by 2^600 or 2^-600, a scene's squared lengths overflow or underflow; brought
+// near 1 again by raytracer.exe's bring_lengths_near_one(), it renders the same bytes
+// as the scene brought near 1 from its own size (where the scaled lengths stay normal
+// numbers: a disc 1e-300 thin cannot be scaled down by 2^600).
+TEST(a_scene_of_extreme_size_renders_as_at_its_own) {
+    auto stays_normal = [](const rt::Scene& s, int shift) {
+        bool normal = true;
+        auto check = [&](double x) {
+            int e = 0;
+            (void)std::frexp(x, &e);
+            normal = normal && (x == 0 || (e + shift > -1020 && e + shift < 1020));
+        };
+        for (double x : {s.near_plane, s.left, s.right, s.bottom, s.top}) check(x);
+        for (const rt::SphereSpec& e : s.spheres)
+            for (const rt::Vec3<double>& v : {e.centre, e.scale}) check(v.x), check(v.y), check(v.z);
+        for (const rt::LightSpec& l : s.lights) check(l.position.x), check(l.position.y), check(l.position.z);
+        return normal;
+    };
+    int compared = 0;
+    for (const Case& c : cases()) {
+        rt::Scene own = c.scene;
+        rt::bring_lengths_near_one(own);
+        const rt::Image original = render(own);
+        for (const int shift : {600, -600}) {
+            if (!stays_normal(c.scene, shift)) continue;
+            rt::Scene scaled = transforms::scaled(c.scene, std::ldexp(1.0, shift));
+            rt::bring_lengths_near_one(scaled);
+            const long long d = differing(render(scaled), original);
+            if (d != 0) std::cerr << c.name << " scaled by 2^" << shift << ": " << d << " pixels differ\n";
+            CHECK_EQ(d, 0);
+            ++compared;
+        }
+    }
+    CHECK(compared >= 30);
 }
 
 // Scaling by 1e-4, 1e3 or 1e6 rounds each scaled number, i.e. moves the scene by up to
