@@ -1,6 +1,8 @@
 // raytracer.exe <scene-file>: renders the scene and writes the P6 image its OUTPUT
 // line names (or -o names). Exit statuses are listed in usage_text() and README.md.
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <exception>
 #include <new>
 #include <string>
@@ -118,12 +120,17 @@ int render(const rt::CommandLine& line, const rt::Scene& scene) {
 
 int main(int argc, char** argv) {
     const rt::CommandLine line = rt::parse_command_line(argc, argv);
-    if (line.action == rt::CommandLine::Action::Help) {
-        std::fputs(usage_text(), stdout);
-        return kSuccess;
-    }
-    if (line.action == rt::CommandLine::Action::Version) {
-        std::printf("raytracer.exe %s\n", rt::kVersion);
+    if (line.action == rt::CommandLine::Action::Help || line.action == rt::CommandLine::Action::Version) {
+        if (line.action == rt::CommandLine::Action::Help)
+            std::fputs(usage_text(), stdout);
+        else
+            std::printf("raytracer.exe %s\n", rt::kVersion);
+        // A full disk or a closed stdout is an error, not a silent success.
+        if (std::fflush(stdout) != 0 || std::ferror(stdout) != 0) {
+            std::fprintf(stderr, "raytracer.exe: error: standard output could not be written: %s\n",
+                         std::strerror(errno));
+            return kCannotWrite;
+        }
         return kSuccess;
     }
     if (line.action == rt::CommandLine::Action::Wrong) {

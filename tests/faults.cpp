@@ -379,6 +379,21 @@ TEST(output_naming_the_scene_through_a_link_is_refused) {
 }
 
 // A folder on the way that is a symbolic link out of the working folder is outside it.
+// --help and --version into a full disk (or a closed stdout): exit 3 and one line, not a
+// silent success.
+TEST(help_that_cannot_be_written_is_an_error) {
+    const Scratch folder;
+    for (const char* option : {"--help", "--version"}) {
+        Options options;
+        options.stdout_fd = open("/dev/full", O_WRONLY);
+        CHECK(options.stdout_fd >= 0);
+        CHECK_EQ(run(folder, {option}, options), 3);
+        close(options.stdout_fd);
+        CHECK(captured_stderr(folder).rfind("raytracer.exe: error: standard output could not be written: ",
+                                            0) == 0);
+    }
+}
+
 // raytracer.exe -o - scene.txt >> scene.txt: standard output is the scene file itself,
 // refused before anything is written to it.
 TEST(standard_output_into_the_scene_file_is_refused) {
