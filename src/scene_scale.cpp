@@ -19,16 +19,32 @@ void for_each_length(SceneType& scene, F f) {
 }  // namespace
 
 int length_shift(const Scene& scene) {
+    // The exponents of the least size and of the greatest length: |x| in
+    // [2^(e - 1), 2^e). Sizes (NEAR, the window's width and height, the scales) are
+    // squared and divided by; coordinates enter only through differences, where one far
+    // below the scene's size counts as 0, so they bound the top alone.
     int least = INT_MAX, greatest = INT_MIN;
+    auto exponent_of = [](double x) {
+        int e = 0;
+        (void)std::frexp(x, &e);
+        return e;
+    };
+    auto size = [&](double x) {
+        if (x == 0 || !std::isfinite(x)) return;  // a width may overflow: its ends count
+        least = std::min(least, exponent_of(x)), greatest = std::max(greatest, exponent_of(x));
+    };
     for_each_length(scene, [&](double x) {
-        if (x == 0) return;
-        int exponent = 0;
-        (void)std::frexp(x, &exponent);  // |x| in [2^(exponent-1), 2^exponent)
-        least = std::min(least, exponent), greatest = std::max(greatest, exponent);
+        if (x != 0) greatest = std::max(greatest, exponent_of(x));
     });
-    if (least > greatest) return 0;  // no nonzero length (a parsed scene has NEAR > 0)
+    size(scene.near_plane), size(scene.right - scene.left), size(scene.top - scene.bottom);
+    for (const SphereSpec& s : scene.spheres) size(s.scale.x), size(s.scale.y), size(s.scale.z);
+    if (least > greatest) return 0;  // no size (a parsed scene has NEAR > 0)
     if (least >= -kLengthExponentRange && greatest <= kLengthExponentRange) return 0;
-    if (greatest - least > 2000) return 0;
+    // Centred, the ends lie within 2^+-(span / 2): their squares stay normal numbers
+    // while the span is at most kMostLengthSpan. Past it no shift holds both ends, and one
+    // could push a length that renders well as written out of range: the scene stays as
+    // it is.
+    if (greatest - least > kMostLengthSpan) return 0;
     // Half the sum rounded down, not toward zero: a scene and the same scene times 2^m
     // end on the same numbers.
     const int sum = least + greatest;

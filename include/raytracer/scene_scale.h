@@ -17,13 +17,22 @@
 
 namespace rt {
 
-// Lengths between 2^-kLengthExponentRange and 2^kLengthExponentRange render as they
-// are (every course and scale scene; no copy of the scene).
+// Sizes (NEAR, the window's width and height, the scales) and coordinates (the window's
+// edges, the centres, the lights) between 2^-kLengthExponentRange and
+// 2^kLengthExponentRange render as they are (every course and scale scene; no copy).
+// A coordinate far below the scene's size is not held to that range: it only ever
+// enters a difference, and shifted below the smallest double it becomes 0, a move far
+// below any rounding of the scene.
 inline constexpr int kLengthExponentRange = 100;
 
-// The k of 2^k that centres the scene's nonzero lengths on 1 (the exponents of the
-// least and the greatest, averaged), or 0 where they all lie within the range above, or
-// where they span more than 2^-1000 to 2^1000 (nothing can hold both ends).
+// The most binary orders of magnitude between the least size and the greatest length
+// for a shift: centred, both ends' squares then stay finite and normal.
+inline constexpr int kMostLengthSpan = 1000;
+
+// The k of 2^k that centres the scene's least size and greatest length on 1 (their
+// exponents averaged), or 0 where they lie within the range above, or where they span
+// more than kMostLengthSpan orders (no shift holds both ends: as written, a window of
+// +-1e308 seen at NEAR 1).
 int length_shift(const Scene& scene);
 
 // Every length of the scene multiplied by 2^shift.
