@@ -19,19 +19,22 @@ namespace {
 
 // The handler reads only these, and calls only unlink, write and _exit, which are
 // async-signal-safe. A path is copied into cleanup_path before cleanup_set is raised,
-// so the handler never sees half a path.
+// so the handler never sees half a path: the flags are lock-free atomics, stored with
+// release and loaded with acquire, as the handler may run on any thread (a render
+// thread), where a fence for signals alone would not order the path before the flag.
+static_assert(std::atomic<int>::is_always_lock_free, "a signal handler may use only lock-free atomics");
 constexpr std::size_t kMaxPath = 4096;
 char cleanup_path[kMaxPath];
 #ifdef _WIN32
 wchar_t cleanup_wide_path[kMaxPath];
 #endif
-volatile std::sig_atomic_t cleanup_set = 0;  // 1: cleanup_path, 2: cleanup_wide_path
+std::atomic<int> cleanup_set{0};  // 1: cleanup_path, 2: cleanup_wide_path
 // "\r", as many spaces as the progress line has characters, "\r": a line is erased by
 // overwriting it, which every terminal and the Windows console understand (an ANSI
 // "erase line" is not understood by older consoles). Set before erase_line is raised.
 char erase_text[kMaxErasedLine + 3];
-volatile std::sig_atomic_t erase_line = 0;
-volatile std::sig_atomic_t output_is_stream = 0;
+std::atomic<int> erase_line{0};
+std::atomic<int> output_is_stream{0};
 
 void say(const char* text) {
 #ifdef _WIN32
@@ -43,12 +46,13 @@ void say(const char* text) {
 
 extern "C" void render_on_interrupt(int signal_number) {
 #ifdef _WIN32
-    if (cleanup_set == 1) (void)_unlink(cleanup_path);
-    if (cleanup_set == 2) (void)_wunlink(cleanup_wide_path);
+    const int cleanup = cleanup_set.load(std::memory_order_acquire);
+    if (cleanup == 1) (void)_unlink(cleanup_path);
+    if (cleanup == 2) (void)_wunlink(cleanup_wide_path);
 #else
-    if (cleanup_set != 0) (void)unlink(cleanup_path);
+    if (cleanup_set.load(std::memory_order_acquire) != 0) (void)unlink(cleanup_path);
 #endif
-    if (erase_line != 0) say(erase_text);
+    if (erase_line.load(std::memory_order_acquire) != 0) say(erase_text);
     const char* name = "a signal";
     if (signal_number == SIGINT) name = "SIGINT";
     if (signal_number == SIGTERM) name = "SIGTERM";
@@ -57,7 +61,8 @@ extern "C" void render_on_interrupt(int signal_number) {
 #endif
     say("raytracer.exe: error: interrupted by ");
     say(name);
-    say(output_is_stream != 0 ? ", the image written so far is incomplete\n" : ", no image written\n");
+    say(output_is_stream.load(std::memory_order_relaxed) != 0 ? ", the image written so far is incomplete\n"
+                                                              : ", no image written\n");
     _exit(128 + signal_number);
 }
 
@@ -84,42 +89,41 @@ void install_interrupt_handlers() {
 #endif
 }
 
-void clear_interrupt_cleanup() { cleanup_set = 0; }
+void clear_interrupt_cleanup() { cleanup_set.store(0, std::memory_order_release); }
 
 bool set_interrupt_cleanup(const char* path) {
-    cleanup_set = 0;
+    cleanup_set.store(0, std::memory_order_release);
     const std::size_t length = std::strlen(path);
     if (length >= kMaxPath) return false;
     std::memcpy(cleanup_path, path, length + 1);
-    std::atomic_signal_fence(std::memory_order_seq_cst);  // the path is complete before the flag
-    cleanup_set = 1;
+    cleanup_set.store(1, std::memory_order_release);  // the path is complete before the flag
     return true;
 }
 
 #ifdef _WIN32
 bool set_interrupt_cleanup(const wchar_t* path) {
-    cleanup_set = 0;
+    cleanup_set.store(0, std::memory_order_release);
     const std::size_t length = std::wcslen(path);
     if (length >= kMaxPath) return false;
     std::wmemcpy(cleanup_wide_path, path, length + 1);
-    std::atomic_signal_fence(std::memory_order_seq_cst);  // the path is complete before the flag
-    cleanup_set = 2;
+    cleanup_set.store(2, std::memory_order_release);  // the path is complete before the flag
     return true;
 }
 #endif
 
 void set_interrupt_erases_line(int length) {
-    erase_line = 0;
+    erase_line.store(0, std::memory_order_release);
     if (length <= 0) return;
     const auto n = static_cast<std::size_t>(length < kMaxErasedLine ? length : kMaxErasedLine);
     erase_text[0] = '\r';
     std::memset(erase_text + 1, ' ', n);
     erase_text[n + 1] = '\r';
     erase_text[n + 2] = '\0';
-    std::atomic_signal_fence(std::memory_order_seq_cst);  // the text is complete before the flag
-    erase_line = 1;
+    erase_line.store(1, std::memory_order_release);  // the text is complete before the flag
 }
 
-void set_interrupt_output_is_stream(bool stream) { output_is_stream = stream ? 1 : 0; }
+void set_interrupt_output_is_stream(bool stream) {
+    output_is_stream.store(stream ? 1 : 0, std::memory_order_relaxed);
+}
 
 }  // namespace rt

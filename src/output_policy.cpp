@@ -48,8 +48,8 @@ bool same_file(const std::string& a, const std::string& b) {
 bool standard_output_is(const std::string& file) {
     BY_HANDLE_FILE_INFORMATION x{}, y{};
     const HANDLE out = GetStdHandle(STD_OUTPUT_HANDLE);
-    return out != INVALID_HANDLE_VALUE && out != nullptr && GetFileInformationByHandle(out, &x) != 0 &&
-           identity(file, y) && same_identity(x, y);
+    return out != INVALID_HANDLE_VALUE && out != nullptr && GetFileType(out) == FILE_TYPE_DISK &&
+           GetFileInformationByHandle(out, &x) != 0 && identity(file, y) && same_identity(x, y);
 }
 
 Existing what_is_at(const std::string& path) {

@@ -86,6 +86,8 @@ void ProgressSink::draw(std::chrono::steady_clock::duration elapsed) {
     const int shown = std::min({length, width_, static_cast<int>(sizeof line) - 1});
     if (shown <= 0) return;
     line[shown] = '\0';
+    // A handler that runs while the line is redrawn erases the longer of the two.
+    set_interrupt_erases_line(std::max(drawn_, shown));
     erase();  // or, the first time, go to the start of the line
     (void)std::fputs(line, stderr);
     (void)std::fflush(stderr);
@@ -93,12 +95,12 @@ void ProgressSink::draw(std::chrono::steady_clock::duration elapsed) {
     set_interrupt_erases_line(drawn_);
 }
 
-// Goes to the start of the line, overwriting the line drawn, if any, with spaces.
+// Goes to the start of the line, overwriting the line drawn, if any, with spaces: one
+// write (stderr is unbuffered).
 void ProgressSink::erase() const {
-    (void)std::fputc('\r', stderr);
-    if (drawn_ == 0) return;
-    for (int i = 0; i < drawn_; ++i) (void)std::fputc(' ', stderr);
-    (void)std::fputc('\r', stderr);
+    const std::string blank =
+        drawn_ == 0 ? "\r" : "\r" + std::string(static_cast<std::size_t>(drawn_), ' ') + "\r";
+    (void)std::fputs(blank.c_str(), stderr);
 }
 
 void ProgressSink::finish() {
