@@ -1,8 +1,9 @@
 // A progress line for long renders: when stderr is a terminal and the render has run
 // past a second, one line kept up to date (percent of rows, elapsed, estimate left),
-// cut to the terminal's width so that it never wraps, erased at the end. A RowSink in front of the real one,
-// told of finished rows on the thread that writes (row_ring.h): one clock reading per call, a redraw at most
-// four times a second, no locks, no thread of its own.
+// cut to the terminal's width so that it never wraps, erased at the end. A RowSink in
+// front of the real one, told of finished rows on the thread that writes (row_ring.h):
+// one clock reading per call, a redraw at most four times a second, no locks, no thread
+// of its own.
 #pragma once
 
 #include <chrono>

@@ -39,8 +39,9 @@ constexpr double culling_reach() {
 // intersect() finds a root below 0 and one within |c| / b of 0, where c = o'.o' - 1 (0
 // but for rounding; as mapped_origin() computes it) and b = o'.d' >= |(P - C)/s^2|
 // |L - P| (N.L - 32 eps) (Cauchy-Schwarz on the rounding of each factor). Where that
-// bound exceeds 2000 |c| (2 / kShadowRayMinT), neither root is in (0.001, 1). The caller asks only for points
-// seen from outside; false where |c| is NaN. For one ray or lanes (lanes.h: T = Lanes).
+// bound exceeds 2000 |c| (2 / kShadowRayMinT), neither root is in (0.001, 1). The
+// caller asks only for points seen from outside; false where |c| is NaN. For one ray
+// or lanes (lanes.h: T = Lanes).
 template <typename Real, typename T>
 MaskOf<T> leaves_own_ellipsoid(const T& scaled_length, const T& distance, const T& n_dot_l, const T& abs_c) {
     const T slack = T(Real(32) * std::numeric_limits<Real>::epsilon());

@@ -36,8 +36,9 @@ namespace rt {
 // The eye rays of columns [first, last) of one row against one ellipsoid, the scene's
 // ellipsoid `index`: o is mapped_origin() of the camera, column_dx(c) gives
 // d'.x = x / s.x of column c, and dy, dz the row's d'.y = y / s.y, d'.z = near_z / s.z.
-// Each column's nearest hit so far (best_t: infinity, best: kNoEllipsoid before the first) is
-// replaced where the ellipsoid shows a nearer root, or an equal one at a lower index.
+// Each column's nearest hit so far (best_t: infinity, best: kNoEllipsoid before the
+// first) is replaced where the ellipsoid shows a nearer root, or an equal one at a lower
+// index.
 // Used by the tree's blocks (EyeBlock) and the flat sweep's rows (EyeRays).
 template <int kBlock, typename Real, typename ColumnDx>
 RT_ALWAYS_INLINE void merge_eye_row(const MappedOrigin<Real>& o, ColumnDx column_dx, Real dy, Real dz,
