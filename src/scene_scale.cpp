@@ -40,15 +40,16 @@ int length_shift(const Scene& scene) {
     for (const SphereSpec& s : scene.spheres) size(s.scale.x), size(s.scale.y), size(s.scale.z);
     if (least > greatest) return 0;  // no size (a parsed scene has NEAR > 0)
     if (least >= -kLengthExponentRange && greatest <= kLengthExponentRange) return 0;
-    // Centred, the ends lie within 2^+-(span / 2): their squares stay normal numbers
-    // while the span is at most kMostLengthSpan. Past it no shift holds both ends, and one
-    // could push a length that renders well as written out of range: the scene stays as
-    // it is.
-    if (greatest - least > kMostLengthSpan) return 0;
-    // Half the sum rounded down, not toward zero: a scene and the same scene times 2^m
-    // end on the same numbers.
+    // Held at the top, a span past three times the limit would take a size to 0.
+    if (greatest - least > 3 * kLengthExponentLimit) return 0;
+    // Centred, unless that takes an end past 2^+-kLengthExponentLimit, where squares
+    // leave the normal numbers. Where no shift holds both ends (a span past twice the
+    // limit), the greatest is held: an overflowing length costs every ray its light, an
+    // underflowing size only its own ellipsoid's shading.
     const int sum = least + greatest;
-    return -(sum >= 0 ? sum / 2 : -((1 - sum) / 2));
+    const int centred = -(sum >= 0 ? sum / 2 : -((1 - sum) / 2));  // half the sum rounded down
+    const int lowest = -kLengthExponentLimit - least, highest = kLengthExponentLimit - greatest;
+    return std::min(highest, std::max(lowest, centred));
 }
 
 void scale_lengths(Scene& scene, int shift) {

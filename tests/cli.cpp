@@ -317,6 +317,24 @@ TEST(a_scene_of_extreme_size_renders_as_at_its_own) {
     CHECK(one == read_bytes(folder / "tiny.ppm"));
     CHECK(one == read_bytes(folder / "spanning.ppm"));
     CHECK(one.find("\xff\x80") != std::string::npos);  // lit: red 255, green 128 somewhere
+
+    // A light at 1e300 beside a speck of scale 1e-10: no shift holds both squares, and
+    // the light's is kept from overflowing (it lit nothing when it did): the bytes of the
+    // light at 1e250, which needs no shift.
+    auto far_light = [](const std::string& z) {
+        return "NEAR 1\nLEFT -1\nRIGHT 1\nBOTTOM -1\nTOP 1\nRES 20 20\n"
+               "SPHERE ball 0 0 -5 1 1 1 1 1 1 0.1 0.9 0 0 1\nLIGHT sun 0 0 " +
+               z +
+               " 1 1 1\nSPHERE speck 50 0 -5 1e-10 1e-10 1e-10 1 1 1 0 0 0 0 1\nBACK 0 0 0\n"
+               "AMBIENT 1 1 1\nOUTPUT far.ppm\n";
+    };
+    write_bytes(folder / "far.txt", far_light("1e300"));
+    CHECK_EQ(run(folder, {"far.txt"}).status, 0);
+    const std::string farthest = read_bytes(folder / "far.ppm");
+    write_bytes(folder / "far.txt", far_light("1e250"));
+    CHECK_EQ(run(folder, {"far.txt"}).status, 0);
+    CHECK(farthest == read_bytes(folder / "far.ppm"));
+    CHECK(farthest.find("\xff\xff\xff") != std::string::npos);  // lit: 0.1 + 0.9 facing the light
 }
 
 TEST(a_scene_renders_silently_to_its_output_file) {

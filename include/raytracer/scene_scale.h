@@ -25,14 +25,17 @@ namespace rt {
 // below any rounding of the scene.
 inline constexpr int kLengthExponentRange = 100;
 
-// The most binary orders of magnitude between the least size and the greatest length
-// for a shift: centred, both ends' squares then stay finite and normal.
-inline constexpr int kMostLengthSpan = 1000;
+// How far from 2^0 a shift may take the least size and the greatest length: their
+// squares then stay finite and normal (2^+-1000 within 2^+-1022).
+inline constexpr int kLengthExponentLimit = 500;
 
 // The k of 2^k that centres the scene's least size and greatest length on 1 (their
-// exponents averaged), or 0 where they lie within the range above, or where they span
-// more than kMostLengthSpan orders (no shift holds both ends: as written, a window of
-// +-1e308 seen at NEAR 1).
+// exponents averaged, the result rounded down, so that a scene and the same scene times
+// 2^m end on the same numbers), or 0 where they lie within the range above. Where
+// centring would take an end past 2^+-kLengthExponentLimit, the shift stops there; where
+// they span more than twice that, the greatest is held at 2^kLengthExponentLimit (a far
+// light loses no light; a size far below the rest loses its own shading's precision);
+// past three times that (a size would become 0) the scene stays as written.
 int length_shift(const Scene& scene);
 
 // Every length of the scene multiplied by 2^shift.
