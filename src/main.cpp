@@ -121,10 +121,10 @@ int render(const rt::CommandLine& line, const rt::Scene& scene) {
 int main(int argc, char** argv) {
     const rt::CommandLine line = rt::parse_command_line(argc, argv);
     if (line.action == rt::CommandLine::Action::Help || line.action == rt::CommandLine::Action::Version) {
-        if (line.action == rt::CommandLine::Action::Help)
-            std::fputs(usage_text(), stdout);
-        else
-            std::printf("raytracer.exe %s\n", rt::kVersion);
+        const std::string text = line.action == rt::CommandLine::Action::Help
+                                     ? std::string(usage_text())
+                                     : std::string("raytracer.exe ") + rt::kVersion + "\n";
+        std::fputs(text.c_str(), stdout);
         // A full disk or a closed stdout is an error, not a silent success.
         if (std::fflush(stdout) != 0 || std::ferror(stdout) != 0) {
             std::fprintf(stderr, "raytracer.exe: error: standard output could not be written: %s\n",

@@ -60,19 +60,21 @@ Existing what_is_at(const std::string& path) {
     return status.type() == fs::file_type::regular ? Existing::RegularFile : Existing::Other;
 }
 #else
-// The same file whatever the names: device and inode (hard links, symbolic links, ./).
+// A file's identity whatever its names: device and inode (hard links, symbolic links, ./).
+bool same_identity(const struct stat& x, const struct stat& y) {
+    return x.st_dev == y.st_dev && x.st_ino == y.st_ino;
+}
+
 bool same_file(const std::string& a, const std::string& b) {
     struct stat x {
     }, y{};
-    return ::stat(a.c_str(), &x) == 0 && ::stat(b.c_str(), &y) == 0 && x.st_dev == y.st_dev &&
-           x.st_ino == y.st_ino;
+    return ::stat(a.c_str(), &x) == 0 && ::stat(b.c_str(), &y) == 0 && same_identity(x, y);
 }
 
 bool standard_output_is(const std::string& file) {
     struct stat x {
     }, y{};
-    return ::fstat(STDOUT_FILENO, &x) == 0 && ::stat(file.c_str(), &y) == 0 && x.st_dev == y.st_dev &&
-           x.st_ino == y.st_ino;
+    return ::fstat(STDOUT_FILENO, &x) == 0 && ::stat(file.c_str(), &y) == 0 && same_identity(x, y);
 }
 
 Existing what_is_at(const std::string& path) {

@@ -5,19 +5,6 @@
 #include <cmath>
 
 namespace rt {
-namespace {
-
-// Calls f with every length of the scene, in place.
-template <typename SceneType, typename F>
-void for_each_length(SceneType& scene, F f) {
-    for (auto* x : {&scene.near_plane, &scene.left, &scene.right, &scene.bottom, &scene.top}) f(*x);
-    auto each = [&f](auto& v) { f(v.x), f(v.y), f(v.z); };
-    for (auto& s : scene.spheres) each(s.centre), each(s.scale);
-    for (auto& l : scene.lights) each(l.position);
-}
-
-}  // namespace
-
 int length_shift(const Scene& scene) {
     // The exponents of the least size and of the greatest length: |x| in
     // [2^(e - 1), 2^e). Sizes (NEAR, the window's width and height, the scales) are
@@ -31,7 +18,8 @@ int length_shift(const Scene& scene) {
     };
     auto size = [&](double x) {
         if (x == 0 || !std::isfinite(x)) return;  // a width may overflow: its ends count
-        least = std::min(least, exponent_of(x)), greatest = std::max(greatest, exponent_of(x));
+        const int e = exponent_of(x);
+        least = std::min(least, e), greatest = std::max(greatest, e);
     };
     for_each_length(scene, [&](double x) {
         if (x != 0) greatest = std::max(greatest, exponent_of(x));

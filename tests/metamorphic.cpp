@@ -84,15 +84,11 @@ TEST(scaling_by_a_power_of_two_changes_no_pixel) {
 TEST(a_scene_of_extreme_size_renders_as_at_its_own) {
     auto stays_normal = [](const rt::Scene& s, int shift) {
         bool normal = true;
-        auto check = [&](double x) {
+        rt::for_each_length(s, [&](double x) {
             int e = 0;
             (void)std::frexp(x, &e);
             normal = normal && (x == 0 || (e + shift > -1020 && e + shift < 1020));
-        };
-        for (double x : {s.near_plane, s.left, s.right, s.bottom, s.top}) check(x);
-        for (const rt::SphereSpec& e : s.spheres)
-            for (const rt::Vec3<double>& v : {e.centre, e.scale}) check(v.x), check(v.y), check(v.z);
-        for (const rt::LightSpec& l : s.lights) check(l.position.x), check(l.position.y), check(l.position.z);
+        });
         return normal;
     };
     int compared = 0;

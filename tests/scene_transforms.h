@@ -7,22 +7,14 @@
 
 #include "raytracer/image.h"
 #include "raytracer/scene.h"
+#include "raytracer/scene_scale.h"
 
 namespace transforms {
 
 // Every length multiplied by k: positions, scales, NEAR, LEFT, RIGHT, BOTTOM, TOP and
 // the lights. Every ray parameter t stays the same, so the image should too.
 inline rt::Scene scaled(rt::Scene scene, double k) {
-    scene.near_plane *= k;
-    scene.left *= k;
-    scene.right *= k;
-    scene.bottom *= k;
-    scene.top *= k;
-    for (rt::SphereSpec& s : scene.spheres) {
-        s.centre = s.centre * k;
-        s.scale = s.scale * k;
-    }
-    for (rt::LightSpec& l : scene.lights) l.position = l.position * k;
+    rt::for_each_length(scene, [k](double& x) { x *= k; });
     return scene;
 }
 

@@ -17,6 +17,17 @@
 
 namespace rt {
 
+// Calls f with every length of the scene (NEAR, the window's edges, the centres, the
+// scales, the lights), in place where scene is not const: the one list of what a
+// length is, for the shift below and for the tests that scale a scene.
+template <typename SceneType, typename F>
+void for_each_length(SceneType& scene, F f) {
+    for (auto* x : {&scene.near_plane, &scene.left, &scene.right, &scene.bottom, &scene.top}) f(*x);
+    auto each = [&f](auto& v) { f(v.x), f(v.y), f(v.z); };
+    for (auto& s : scene.spheres) each(s.centre), each(s.scale);
+    for (auto& l : scene.lights) each(l.position);
+}
+
 // Sizes (NEAR, the window's width and height, the scales) and coordinates (the window's
 // edges, the centres, the lights) between 2^-kLengthExponentRange and
 // 2^kLengthExponentRange render as they are (every course and scale scene; no copy).
