@@ -264,7 +264,7 @@ TEST(bvh_collapse_keeps_every_item_and_no_small_node) {
     const std::vector<rt::Ellipsoid<double>> all = rt::make_ellipsoids<double>(scene);
     rt::LargeVector<rt::BuildItem<double>> items(all.size());
     for (std::size_t i = 0; i < all.size(); ++i)
-        items[i] = rt::build_item<double>(all[i], static_cast<std::uint32_t>(i));
+        items[i] = rt::build_item<double>(all[i], static_cast<std::uint32_t>(i), rt::BoxGaps<double>{});
     const rt::LargeVector<rt::BuildNode<double>> binary = rt::BinaryTreeBuilder<double>().build(items);
     rt::LargeVector<rt::WideNode<double, 8>> nodes;
     const rt::WideChild root = rt::collapse<8>(binary, nodes);
@@ -518,10 +518,13 @@ std::vector<rt::SphereSpec> adversarial_ellipsoids(std::mt19937& g, double world
 // Rays of every kind at the ellipsoids, as BruteForce answers them (closest() and
 // occluded(), with and without a hint): from the camera at an ellipsoid's rim (through
 // the near plane); from a surface point along its tangent plane, off it by 0 to 1e-4
-// (the tangency allowance); from 49 to 1e7 smallest scales away grazing the rim (the
-// guard's boundary, 5e5 in double and 50 in float, max-norm); shadow and reflected rays
-// from an eye ray's hit point; and rays from just outside a box's face with direction
-// components 0 (slab planes). Returns the number of differing answers.
+// (the tangency allowance); from 49 to 1e11 smallest scales away grazing the rim (the
+// guard's boundary, 5e8 in double and 50 in float, max-norm; farther for the thin and
+// tiny ones, whose boxes are grown: BoxGaps); shadow and reflected rays
+// from an eye ray's hit point; rays head on from up to the guard distance, or from
+// across the scene, ending within 0.05 smallest scales of the surface (before or past
+// it: the roots' rounding grows with |o'|); and rays from just outside a box's face
+// with direction components 0 (slab planes). Returns the number of differing answers.
 template <typename Real>
 int adversarial_rays_differing(unsigned seed, int rays) {
     using V = rt::Vec3<Real>;
@@ -550,7 +553,7 @@ int adversarial_rays_differing(unsigned seed, int rays) {
     for (int k = 0; k < rays; ++k) {
         const rt::Ellipsoid<Real>& e = all[g() % all.size()];
         const V u = normalize(V{r(-1, 1), r(-1, 1), r(-1, 1)});
-        switch (g() % 6) {
+        switch (g() % 7) {
             case 0: {
                 const Real off = Real(uniform(g, -1e-9, 1e-9) * (g() % 2 != 0 ? 1 : 1e-6));
                 const V rim = e.centre + V{e.scale.x * (1 + off), 0, 0};
@@ -570,10 +573,11 @@ int adversarial_rays_differing(unsigned seed, int rays) {
                 break;
             }
             case 3: {
-                const double away[] = {49, 50, 51, 1e2, 1e5, 4.9e5, 5e5, 5.1e5, 8.6e5, 1e6, 1e7};
+                const double away[] = {49,    50,    51,  1e2,  1e5,  1e7,  4.9e8, 5e8,
+                                       5.1e8, 8.6e8, 1e9, 1e10, 1e11, 1e13, 1e14};
                 const Real smallest =
                     std::min({std::abs(e.scale.x), std::abs(e.scale.y), std::abs(e.scale.z)});
-                const V origin = e.centre + u * (smallest * Real(away[g() % 11]) * r(0.99, 1.01));
+                const V origin = e.centre + u * (smallest * Real(away[g() % 15]) * r(0.99, 1.01));
                 const V side = normalize(cross_product(u, V{0, 1, 0}));
                 const V rim = e.centre + V{side.x * std::abs(e.scale.x), side.y * std::abs(e.scale.y),
                                            side.z * std::abs(e.scale.z)} *
@@ -596,6 +600,19 @@ int adversarial_rays_differing(unsigned seed, int rays) {
                 compare(point, towards - normal * (2 * dot(normal, towards)), rt::kReflectedRayMinT);
                 break;
             }
+            case 5: {  // head on from up to the guard (or across the scene), ending near the surface
+                const Real smallest =
+                    std::min({std::abs(e.scale.x), std::abs(e.scale.y), std::abs(e.scale.z)});
+                const double reach = rt::kCullingGap / rt::gap_per_reach<Real>();
+                const V point = e.centre + u * e.scale;
+                const V towards = normalize(u + V{r(-0.5, 0.5), r(-0.5, 0.5), r(-0.5, 0.5)});
+                const Real length = g() % 2 != 0 ? smallest * Real(reach * uniform(g, 0.15, 0.3))
+                                                 : Real(world * uniform(g, 1, 30));
+                const V origin = point + towards * length;
+                const Real short_by = Real(uniform(g, -50, 50) * 1e-3) * smallest / length;
+                compare(origin, (point - origin) * (1 - short_by), rt::kShadowRayMinT);
+                break;
+            }
             default: {
                 const rt::Ellipsoid<Real>& f = all[g() % all.size()];
                 const V origin =
@@ -615,7 +632,8 @@ int adversarial_rays_differing(unsigned seed, int rays) {
 
 // The generator above finds 800 differences in 400k rays where a box holding the origin
 // may be culled (the tangent roots), and some where kCullingGap is 1e-9 or the guard is
-// off (float's rounding at 50 smallest scales).
+// off (float's rounding at 50 smallest scales), or where gap_per_reach() is 1e-19 in
+// double (a reach of 1e16 smallest scales); none at 1e-17 (1e14), 1e-16 or 1e-15.
 TEST(bvh_adversarial_rays_match_brute_force) {
     for (unsigned seed = 1; seed <= 150; ++seed) {
         CHECK_EQ(adversarial_rays_differing<float>(seed, 1500), 0);
@@ -684,6 +702,32 @@ TEST(bvh_float_directions_below_the_normal_range) {
     }
     CHECK(hits > 0);
     CHECK_EQ(differing, 0);
+}
+
+// Discs 1e-9 thick seen from 10 to 30 away (|o'| up to 3e10): their boxes are grown so
+// that they cull rays from anywhere in the scene (BoxGaps), where a gap of kCullingGap
+// culled nothing beyond 1e6 smallest scales and 2,000 of them took 4 s at 400x400
+// instead of 0.01 s. The images stay the reference's, in double and long double.
+TEST(thin_discs_far_away_are_culled_and_render_as_the_reference) {
+    const rt::BoxGaps<double> gaps(2 * 40.0);
+    CHECK(gaps.gap(0.3) == rt::kCullingGap);
+    CHECK(gaps.gap(1e-9) > rt::kCullingGap && gaps.gap(1e-9) < 0.2);
+    CHECK(gaps.guard(1e-9) > 79.9 && gaps.guard(0.3) > 79.9);  // the extent, within rounding
+    CHECK(gaps.gap(1e-13) == rt::kLargestCullingGap && gaps.guard(1e-13) < 80);
+    rt::Scene s = stress::random_scene(4);
+    s.columns = 40, s.rows = 40;
+    std::mt19937 g(11);
+    s.spheres.resize(250, s.spheres.front());
+    for (std::size_t i = 0; i < s.spheres.size(); ++i) {
+        rt::SphereSpec& e = s.spheres[i];
+        e.name = "disc" + std::to_string(i);
+        e.centre = {uniform(g, -8, 8), uniform(g, -8, 8), uniform(g, -30, -10)};
+        e.scale = {0.3, 0.3, 0.3};
+        (i % 3 == 0 ? e.scale.x : i % 3 == 1 ? e.scale.y : e.scale.z) = 1e-9;
+        e.kd = 0.6, e.ks = 0.3, e.kr = i % 4 == 0 ? 0.5 : 0;
+    }
+    CHECK(renders_as_plain<double>("thin discs", s, 2));
+    CHECK(renders_as_plain<long double>("thin discs", s, 1));
 }
 
 // The same through a render: a camera plane of 1e-44 (subnormal in float), its eye rays

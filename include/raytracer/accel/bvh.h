@@ -9,16 +9,17 @@
 // the nearest root found so far; the any-hit query takes them in any order and stops at the first blocker.
 //
 // Exactness: a query returns what brute_force.h returns, bit for bit. Each ellipsoid's box is its
-// axis-aligned bounding box grown by kCullingGap of each scale (exact_culling.h, slab_rays.h), a gap of
-// 1e-3 in the unit sphere's space; a root that intersect() reports lies within a few ulps of |o'| of the unit
-// sphere (the rounding of the mapped origin, plus the tangency allowance, ellipsoid.h), so its point lies
-// deep inside the box, and the slab test's own rounding (a few ulps of the box's distance) cannot move it
-// out. A ray that runs in a slab's plane, where the slab test's 0 * inf is NaN, cannot reach a box's inside
-// at all. Both hold only while the ray's origin is within culling_reach() smallest scales (|o'| <= 1e6 in
-// double: rounding ~1e-10 against the gap of 1e-3), as in sphere_bounds.h: a child is culled only for a ray
-// from within the guard distance of every ellipsoid under it, else visited unculled. A child whose box holds
-// the ray's origin is never culled either: from a point on the surface (|o'| = 1 within rounding) along its
-// tangent plane, o'.d' is a rounding residue, and where intersect() clamps the discriminant to zero (the
+// axis-aligned bounding box grown by at least kCullingGap of each scale (exact_culling.h, slab_rays.h), a
+// gap of 1e-3 in the unit sphere's space; a root that intersect() reports lies within a few ulps of |o'| of
+// the unit sphere (the rounding of the mapped origin, plus the tangency allowance, ellipsoid.h), so its point
+// lies deep inside the box, and the slab test's own rounding (a few ulps of the box's distance) cannot move
+// it out. A ray that runs in a slab's plane, where the slab test's 0 * inf is NaN, cannot reach a box's
+// inside at all. Both hold only while the ray's origin is within the reach its box's gap holds (BoxGaps,
+// slab_rays.h: |o'| <= 1e9 in double for the gap of 1e-3, the roots' rounding 2e-5 there; an ellipsoid thin
+// beside its scene is grown more, so that its box culls rays from anywhere in it): a child is culled only for
+// a ray from within the guard distance of every ellipsoid under it, else visited unculled. A child whose box
+// holds the ray's origin is never culled either: from a point on the surface (|o'| = 1 within rounding) along
+// its tangent plane, o'.d' is a rounding residue, and where intersect() clamps the discriminant to zero (the
 // tangency allowance) its second root c/q is c / |o'.d'|, anywhere along the ray, far outside the box (a
 // shadow ray towards a light 2000 radii away leaves the box before t = 0.001 and is still "blocked" at t ~
 // 0.5). From outside the box, |o'.d'| / |d'| >= sqrt(1.001^2 - 1) ~ 0.045 bounds that root's distance from
@@ -117,7 +118,7 @@ public:
         bool rays_set = false;
         traverse<Visit::NearestFirst, true>(ray, std::numeric_limits<C>::infinity(), [&](Child leaf, C& t1) {
             for (std::uint32_t i = leaf.first; i < leaf.first + leaf.count; ++i) {
-                const BuildBox<C> box = inflated_box<C>(items_[i]);
+                const BuildBox<C> box = inflated_box<C>(items_[i], gaps_);
                 if (!meets_box(ray, box, t1)) continue;
                 if (!rays_set)
                     rays.set(origins, directions, lanes, std::numeric_limits<C>::infinity()), rays_set = true;
@@ -151,7 +152,7 @@ public:
         bool met = false;
         traverse<Visit::AnyOrder, true>(ray, std::numeric_limits<C>::infinity(), [&](Child leaf, C& t1) {
             for (std::uint32_t i = leaf.first; i < leaf.first + leaf.count && !met; ++i)
-                met = meets_box(ray, inflated_box<C>(items_[i]), t1);
+                met = meets_box(ray, inflated_box<C>(items_[i], gaps_), t1);
             return met;
         });
         return met;
@@ -181,7 +182,7 @@ public:
         traverse<Visit::AnyOrder>(ray, C(1), [&](Child leaf, C&) {
             for (std::uint32_t k = leaf.first; k < leaf.first + leaf.count && !blocked; ++k)
                 if (k != tried && (skip.of(k) & 1U) == 0 &&
-                    (!ray.culls() || meets_box(ray.slab, inflated_box<C>(items_[k]), C(1))) &&
+                    (!ray.culls() || meets_box(ray.slab, inflated_box<C>(items_[k], gaps_), C(1))) &&
                     blocks_segment(items_[k], point, to_light))
                     blocker = k, blocked = true;
             return blocked;
@@ -235,7 +236,7 @@ public:
         const ClearedLanes skip = in_leaf_order(cleared);
         auto try_ellipsoid = [&](std::uint32_t i, unsigned open) {
             open &= ~skip.of(i);
-            const BuildBox<C> box = inflated_box<C>(items_[i]);
+            const BuildBox<C> box = inflated_box<C>(items_[i], gaps_);
             if (open == 0 || !meets_box(ray, box, C(1))) return;
             if (!rays_set) rays.set(points, to_light, lanes, 1), rays_set = true;
             unsigned met = open & rays.meeting(box);
@@ -276,23 +277,7 @@ public:
     // Calls f(i) for each ellipsoid i of the scene in the leaves whose boxes hold point:
     // at least every ellipsoid whose own box does (those that may hold it: light_shells.h).
     template <typename F>
-    void boxes_holding(const V& point, F f) const {
-        const C p[3] = {C(point.x), C(point.y), C(point.z)};
-        std::vector<Child> to_visit = {root_};
-        while (!to_visit.empty()) {
-            const Child child = to_visit.back();
-            to_visit.pop_back();
-            for (std::uint32_t k = child.first; k < child.first + child.count; ++k) f(index_[k]);
-            if (child.count > 0 || items_.empty()) continue;
-            const Node& node = nodes_[child.first];
-            for (int k = 0; k < Width; ++k) {
-                bool holds = (node.used >> k) & 1U;
-                for (int a = 0; a < 3; ++a)
-                    holds = holds && node.box[0][a][k] <= p[a] && p[a] <= node.box[1][a][k];
-                if (holds) to_visit.push_back(node.child[k]);
-            }
-        }
-    }
+    void boxes_holding(const V& point, F f) const;  // bvh_traverse.h
 
     // Ellipsoid i of the scene.
     const Ellipsoid<Real>& ellipsoid(std::uint32_t i) const { return items_[position_[i]]; }
@@ -346,6 +331,7 @@ private:
     BuildBox<C> bounds_{};                 // of every box
     C guard_ = 0;                          // the smallest guard
     C least_direction_ = 0;                // make_slab_ray()'s least
+    BoxGaps<Real> gaps_;                   // how far each box is grown
     LargeVector<Ellipsoid<Real>> items_;   // in leaf order
     LargeVector<std::uint32_t> index_;     // items_[k] is the ellipsoid index_[k] of the scene
     LargeVector<std::uint32_t> position_;  // and ellipsoid i is items_[position_[i]]
@@ -363,13 +349,24 @@ Bvh<Real, Width>::Bvh(std::size_t count, EllipsoidOf ellipsoid_of, unsigned thre
             other(), here();
     };
     // The items, halves on two threads (their fresh pages' first touch is most of it:
-    // random 10k read and prepared 9.0 -> 8.0 ms).
+    // random 10k read and prepared 9.0 -> 8.0 ms), and the scene's extent, for the gaps
+    // of the boxes: where some ellipsoid is thin beside it, the items are made again.
     LargeVector<BuildItem<C>> items(count);
-    auto make_items = [&](std::size_t first, std::size_t last) {
-        for (std::size_t i = first; i < last; ++i)
-            items[i] = build_item<C>(ellipsoid_of(i), static_cast<std::uint32_t>(i));
+    SceneExtent<C> halves[2];
+    auto make_items = [&](std::size_t first, std::size_t last, SceneExtent<C>& extent) {
+        for (std::size_t i = first; i < last; ++i) {
+            const Ellipsoid<Real> e = ellipsoid_of(i);
+            items[i] = build_item<C>(e, static_cast<std::uint32_t>(i), gaps_);
+            extent.add(e);
+        }
     };
-    both([&] { make_items(count / 2, count); }, [&] { make_items(0, count / 2); });
+    auto make_all = [&] {
+        both([&] { make_items(count / 2, count, halves[1]); }, [&] { make_items(0, count / 2, halves[0]); });
+    };
+    make_all();
+    halves[0].add(halves[1]);
+    gaps_ = BoxGaps<Real>(halves[0].extent());
+    if (halves[0].smallest < gaps_.thin()) make_all();
     const LargeVector<BuildNode<C>> binary = BinaryTreeBuilder<C>().build(items, threads);
     index_.resize(count), position_.resize(count);
     for (std::uint32_t k = 0; k < items.size(); ++k)

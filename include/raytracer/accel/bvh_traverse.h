@@ -1,11 +1,13 @@
 // The descent of the tree of bvh.h: Bvh::traverse(), for one ray and for a bundle's slab
 // ray, which visits the leaves whose boxes the ray may meet (children_met(),
-// slab_rays.h); and the eye blocks' query on it, Bvh::closest() for an EyeBlock.
+// slab_rays.h); the eye blocks' query on it, Bvh::closest() for an EyeBlock; and the
+// leaves whose boxes hold a point, Bvh::boxes_holding().
 #pragma once
 
 #include <cstdint>
 #include <limits>
 #include <utility>
+#include <vector>
 
 #include "raytracer/accel/bvh.h"
 #include "raytracer/bit_scan.h"
@@ -89,7 +91,7 @@ void Bvh<Real, Width>::closest(EyeBlock<Real, Rows, Columns>& block) const {
         const C t1 = block.tried() ? C(block.farthest()) : std::numeric_limits<C>::infinity();
         traverse<Visit::NearestFirst, true>(part, t1, [&](Child leaf, C& t1) {
             for (std::uint32_t i = leaf.first; i < leaf.first + leaf.count; ++i) {
-                const BuildBox<C> box = inflated_box<C>(items_[i]);
+                const BuildBox<C> box = inflated_box<C>(items_[i], gaps_);
                 if (meets_box(part, box, t1)) block.add(items_[i], index_[i], &box);
             }
             if (block.tried()) t1 = C(block.farthest());
@@ -111,6 +113,26 @@ void Bvh<Real, Width>::closest(EyeBlock<Real, Rows, Columns>& block) const {
             if (!make_slab_ray(o, o, lo, hi, least_direction_, ray)) return add_all();
             descend(ray);
         }
+}
+
+template <typename Real, int Width>
+template <typename F>
+void Bvh<Real, Width>::boxes_holding(const V& point, F f) const {
+    const C p[3] = {C(point.x), C(point.y), C(point.z)};
+    std::vector<Child> to_visit = {root_};
+    while (!to_visit.empty()) {
+        const Child child = to_visit.back();
+        to_visit.pop_back();
+        for (std::uint32_t k = child.first; k < child.first + child.count; ++k) f(index_[k]);
+        if (child.count > 0 || items_.empty()) continue;
+        const Node& node = nodes_[child.first];
+        for (int k = 0; k < Width; ++k) {
+            bool holds = (node.used >> k) & 1U;
+            for (int a = 0; a < 3; ++a)
+                holds = holds && node.box[0][a][k] <= p[a] && p[a] <= node.box[1][a][k];
+            if (holds) to_visit.push_back(node.child[k]);
+        }
+    }
 }
 
 }  // namespace rt

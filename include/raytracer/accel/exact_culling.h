@@ -32,6 +32,18 @@ template <typename Real>
 constexpr double culling_reach() {
     return std::numeric_limits<Real>::digits > 30 ? 1e6 : 1e2;
 }
+// The tree's boxes are tried by slab tests alone, so the one rounding they must allow
+// for is the root's: within about 90 eps (1 + |o'|) of the unit sphere at most (the
+// tangent roots, bvh.h). A gap of gap_per_reach() |o'| holds that 50 times over in
+// double (1e-12 against 2e-14), so a box grown by kCullingGap culls rays from within
+// 1e9 smallest scales, and one grown more from farther (BoxGaps, slab_rays.h); float
+// keeps the reach above.
+template <typename Real>
+constexpr double gap_per_reach() {
+    return std::numeric_limits<Real>::digits > 30 ? 1e-12 : kCullingGap / culling_reach<Real>();
+}
+// The most a tree's box is grown, in the unit sphere's space: twice its ellipsoid.
+inline constexpr double kLargestCullingGap = 1;
 
 // Whether the ellipsoid a shadow ray starts on cannot block it, so that
 // blocks_segment() need not be asked. From a point seen from outside, towards a light in

@@ -143,20 +143,84 @@ RT_ALWAYS_INLINE unsigned children_met(const WideNode<C, Width>& node, const Sla
     return mask & node.used;
 }
 
-// An ellipsoid's box: grown by kCullingGap of each scale (exact_culling.h), by 4
-// ulps of the centre too, so that the box's own rounding stays inside the gap even for
-// a small ellipsoid far from the origin, and by the smallest subnormal, as a scale below 500
-// of them is its own product with 1 + kCullingGap: a gap of one ulp is still
-// > kCullingGap of it. Computed where a leaf is visited, not stored: 48 bytes an
-// ellipsoid would take random 100k's prepared peak past 64 MiB.
+// How far the tree grows an ellipsoid's box, and from how far the box may cull a ray
+// (exact_culling.h): grown by kCullingGap of each scale, it culls rays from within
+// 1e9 smallest scales (double), which covers nearly every scene. An ellipsoid thin or
+// small beside its scene (a disc 1e-9 thick seen from 30 away: |o'| = 3e10) is grown by
+// the larger gap that culling from anywhere in the scene needs, up to
+// kLargestCullingGap; past that, rays from afar try it unculled.
+template <typename Real>
+class BoxGaps {
+public:
+    using C = AtLeastDouble<Real>;
+
+    BoxGaps() = default;  // kCullingGap for every ellipsoid
+    // For a scene whose rays start within `extent` (max-norm) of every point of every box.
+    explicit BoxGaps(C extent) {
+        const C wanted = 2 * C(gap_per_reach<Real>()) * extent;  // then guard(s) = extent
+        if (!(wanted / C(kCullingGap) <= std::numeric_limits<C>::max())) return;
+        wanted_ = wanted, thin_ = wanted / C(kCullingGap);
+    }
+
+    // The gap of an ellipsoid whose smallest scale is `smallest`, in its unit sphere's space.
+    C gap(C smallest) const {
+        return smallest >= thin_ ? C(kCullingGap) : std::min(C(kLargestCullingGap), wanted_ / smallest);
+    }
+    // The max-norm distance from which its box may cull a ray: the reach that gap holds,
+    // halved, as the Euclidean distance is at most sqrt(3) times the max-norm one.
+    C guard(C smallest) const {
+        const C guard = gap(smallest) / C(gap_per_reach<Real>()) * smallest / 2;
+        return guard <= std::numeric_limits<C>::max() ? guard : std::numeric_limits<C>::max();
+    }
+    // The smallest scales below which gap() exceeds kCullingGap.
+    C thin() const { return thin_; }
+
+private:
+    C wanted_ = 0, thin_ = 0;
+};
+
 template <typename C, typename Real>
-BuildBox<C> inflated_box(const Ellipsoid<Real>& e) {
+C smallest_scale(const Ellipsoid<Real>& e) {
+    using std::abs;
+    return std::min({abs(C(e.scale.x)), abs(C(e.scale.y)), abs(C(e.scale.z))});
+}
+
+// What BoxGaps is made from, gathered ellipsoid by ellipsoid: rays start at the eye (the
+// origin) or on a box, within c +- 2 s (a gap is at most 1), so within twice the
+// largest |c| + 2 |s| (max-norm) of every box; and the smallest scale of all.
+template <typename C>
+struct SceneExtent {
+    C farthest = 0, smallest = std::numeric_limits<C>::infinity();
+
+    template <typename Real>
+    void add(const Ellipsoid<Real>& e) {
+        using std::abs;
+        const C c[3] = {C(e.centre.x), C(e.centre.y), C(e.centre.z)};
+        const C s[3] = {abs(C(e.scale.x)), abs(C(e.scale.y)), abs(C(e.scale.z))};
+        for (int a = 0; a < 3; ++a) farthest = std::max(farthest, abs(c[a]) + 2 * s[a]);
+        smallest = std::min(smallest, smallest_scale<C>(e));
+    }
+    void add(const SceneExtent& other) {
+        farthest = std::max(farthest, other.farthest), smallest = std::min(smallest, other.smallest);
+    }
+    C extent() const { return 2 * farthest; }
+};
+
+// An ellipsoid's box: grown by its gap of each scale (BoxGaps), by 4 ulps of the centre
+// too, so that the box's own rounding stays inside the gap even for a small ellipsoid
+// far from the origin, and by the smallest subnormal, as a scale below 500 of them is
+// its own product with 1 + kCullingGap: a gap of one ulp is still > kCullingGap of it.
+// Computed where a leaf is visited, not stored: 48 bytes an ellipsoid would take random
+// 100k's prepared peak past 64 MiB.
+template <typename C, typename Real>
+BuildBox<C> inflated_box(const Ellipsoid<Real>& e, const BoxGaps<Real>& gaps) {
     using std::abs;
     const C c[3] = {C(e.centre.x), C(e.centre.y), C(e.centre.z)};
     const C s[3] = {abs(C(e.scale.x)), abs(C(e.scale.y)), abs(C(e.scale.z))};
+    const C grow = 1 + gaps.gap(smallest_scale<C>(e));
     BuildBox<C> box;
     for (int a = 0; a < 3; ++a) {
-        const C half = s[a] * (1 + C(kCullingGap)) + abs(c[a]) * 4 * std::numeric_limits<C>::epsilon() +
+        const C half = s[a] * grow + abs(c[a]) * 4 * std::numeric_limits<C>::epsilon() +
                        std::numeric_limits<C>::denorm_min();
         box.lo[a] = c[a] - half, box.hi[a] = c[a] + half;
     }
@@ -164,18 +228,13 @@ BuildBox<C> inflated_box(const Ellipsoid<Real>& e) {
 }
 
 // Ellipsoid e as the tree's build takes it (bvh_build.h): its inflated box, its centre
-// and its guard distance: culling_reach() smallest scales (exact_culling.h). The
-// Euclidean distance is at most sqrt(3) times the max-norm one that the slab test
-// measures: the guard is half the reach.
+// and its guard distance (BoxGaps).
 template <typename C, typename Real>
-BuildItem<C> build_item(const Ellipsoid<Real>& e, std::uint32_t index) {
-    using std::abs;
-    const C reach = C(culling_reach<Real>());
-    const C guard = std::min({abs(C(e.scale.x)), abs(C(e.scale.y)), abs(C(e.scale.z))}) * reach / 2;
+BuildItem<C> build_item(const Ellipsoid<Real>& e, std::uint32_t index, const BoxGaps<Real>& gaps) {
     BuildItem<C> item;
-    item.box = inflated_box<C>(e);
+    item.box = inflated_box<C>(e, gaps);
     item.centre[0] = C(e.centre.x), item.centre[1] = C(e.centre.y), item.centre[2] = C(e.centre.z);
-    item.guard = guard <= std::numeric_limits<C>::max() ? guard : std::numeric_limits<C>::max();
+    item.guard = gaps.guard(smallest_scale<C>(e));
     item.index = index;
     return item;
 }
