@@ -600,16 +600,21 @@ int adversarial_rays_differing(unsigned seed, int rays) {
                 compare(point, towards - normal * (2 * dot(normal, towards)), rt::kReflectedRayMinT);
                 break;
             }
-            case 5: {  // head on from up to the guard (or across the scene), ending near the surface
+            case 5: {  // head on at an axis's tip (the surface nearest its box), from up to
+                       // the guard distance or from across the scene, ending near the surface
                 const Real smallest =
                     std::min({std::abs(e.scale.x), std::abs(e.scale.y), std::abs(e.scale.z)});
                 const double reach = rt::kCullingGap / rt::gap_per_reach<Real>();
-                const V point = e.centre + u * e.scale;
-                const V towards = normalize(u + V{r(-0.5, 0.5), r(-0.5, 0.5), r(-0.5, 0.5)});
-                const Real length = g() % 2 != 0 ? smallest * Real(reach * uniform(g, 0.15, 0.3))
+                const unsigned axis = g() % 3;
+                const Real sign = g() % 2 != 0 ? 1 : -1;
+                const V along{axis == 0 ? sign : 0, axis == 1 ? sign : 0, axis == 2 ? sign : 0};
+                const Real scale = std::abs(axis == 0 ? e.scale.x : axis == 1 ? e.scale.y : e.scale.z);
+                const V point = e.centre + along * scale;
+                const V towards = normalize(along + V{r(-1e-3, 1e-3), r(-1e-3, 1e-3), r(-1e-3, 1e-3)});
+                const Real length = g() % 2 != 0 ? smallest * Real(reach * uniform(g, 0.2, 0.5))
                                                  : Real(world * uniform(g, 1, 30));
                 const V origin = point + towards * length;
-                const Real short_by = Real(uniform(g, -50, 50) * 1e-3) * smallest / length;
+                const Real short_by = Real(uniform(g, -50, 50) * 1e-3) * scale / length;
                 compare(origin, (point - origin) * (1 - short_by), rt::kShadowRayMinT);
                 break;
             }
@@ -632,8 +637,8 @@ int adversarial_rays_differing(unsigned seed, int rays) {
 
 // The generator above finds 800 differences in 400k rays where a box holding the origin
 // may be culled (the tangent roots), and some where kCullingGap is 1e-9 or the guard is
-// off (float's rounding at 50 smallest scales), or where gap_per_reach() is 1e-19 in
-// double (a reach of 1e16 smallest scales); none at 1e-17 (1e14), 1e-16 or 1e-15.
+// off (float's rounding at 50 smallest scales), or where gap_per_reach() is 1e-15 in
+// double (a reach of 1e12 smallest scales) or less; none at 1e-14 or the shipped 1e-12.
 TEST(bvh_adversarial_rays_match_brute_force) {
     for (unsigned seed = 1; seed <= 150; ++seed) {
         CHECK_EQ(adversarial_rays_differing<float>(seed, 1500), 0);
@@ -726,6 +731,16 @@ TEST(thin_discs_far_away_are_culled_and_render_as_the_reference) {
         (i % 3 == 0 ? e.scale.x : i % 3 == 1 ? e.scale.y : e.scale.z) = 1e-9;
         e.kd = 0.6, e.ks = 0.3, e.kr = i % 4 == 0 ? 0.5 : 0;
     }
+    // The tree's boxes are the grown ones: a point 5% beyond the rim of a disc set apart
+    // (in a leaf of its own) lies in its box.
+    rt::Scene apart = s;
+    apart.spheres[0].centre = {40, 40, -20};
+    const std::vector<rt::Ellipsoid<double>> all = rt::make_ellipsoids<double>(apart);
+    const rt::Bvh<double> tree(all, 2);
+    const rt::Vec3<double> beyond_rim = all[0].centre + rt::Vec3<double>{0, 0.3 * 1.05, 0};
+    bool held = false;
+    tree.boxes_holding(beyond_rim, [&held](std::uint32_t i) { held = held || i == 0; });
+    CHECK(held);
     CHECK(renders_as_plain<double>("thin discs", s, 2));
     CHECK(renders_as_plain<long double>("thin discs", s, 1));
 }

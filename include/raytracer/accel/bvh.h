@@ -364,9 +364,10 @@ Bvh<Real, Width>::Bvh(std::size_t count, EllipsoidOf ellipsoid_of, unsigned thre
         both([&] { make_items(count / 2, count, halves[1]); }, [&] { make_items(0, count / 2, halves[0]); });
     };
     make_all();
-    halves[0].add(halves[1]);
-    gaps_ = BoxGaps<Real>(halves[0].extent());
-    if (halves[0].smallest < gaps_.thin()) make_all();
+    SceneExtent<C> scene = halves[0];
+    scene.add(halves[1]);
+    gaps_ = BoxGaps<Real>(scene.extent());
+    if (scene.smallest < gaps_.grown_below()) make_all();
     const LargeVector<BuildNode<C>> binary = BinaryTreeBuilder<C>().build(items, threads);
     index_.resize(count), position_.resize(count);
     for (std::uint32_t k = 0; k < items.size(); ++k)
@@ -380,8 +381,9 @@ Bvh<Real, Width>::Bvh(std::size_t count, EllipsoidOf ellipsoid_of, unsigned thre
         C largest = 0;  // scale
         for (const std::uint32_t i : index_) {
             items_.push_back(ellipsoid_of(i));
-            const V& s = items_.back().scale;
-            largest = std::max({largest, std::abs(C(s.x)), std::abs(C(s.y)), std::abs(C(s.z))});
+            C s[3];
+            abs_scales(items_.back(), s);
+            largest = std::max({largest, s[0], s[1], s[2]});
         }
         // Below it in every component, d / s may be below Real's normal range (twice: a margin).
         least_direction_ = 2 * C(std::numeric_limits<Real>::min()) * largest;

@@ -15,12 +15,13 @@
 namespace rt {
 
 // What a bounding volume may cull (docs/speed.md, "Why every path gives the reference's
-// bytes"). A root the solver reports lies within its rounding of the unit sphere, a few
-// ulps of |o'|: within culling_reach<Real>() smallest scales of an ellipsoid, that is
-// at most about 1e-10 (1e-5 in float). A bounding volume that holds its ellipsoid with a
-// gap of kCullingGap in the unit sphere's space (the flat sweep's spheres, the tree's
-// boxes) therefore rules out only tests that would find no usable root, for rays from
-// within that reach; beyond it nothing is culled.
+// bytes"), the argument stated once. A root the solver reports lies within its rounding
+// of the unit sphere: a few ulps of |o'| away from tangency, and at most about
+// 90 eps (1 + |o'|) for a ray that only touches it (the clamped discriminant: bvh.h).
+// A bounding volume that holds its ellipsoid with a gap of kCullingGap in the unit
+// sphere's space (the flat sweep's spheres, the tree's boxes) therefore rules out only
+// tests that would find no usable root, for rays from within a reach where that
+// rounding stays inside the gap; beyond it nothing is culled.
 inline constexpr double kCullingGap = 1e-3;
 // The silhouette tests (silhouette.h, screen_bounds.h) square an eye ray's direction in
 // an ellipsoid's unit space: from this size on, its squares and their products with
@@ -28,16 +29,18 @@ inline constexpr double kCullingGap = 1e-3;
 // it (a window 1e100 times smaller than the ellipsoid) they may underflow to 0, and no
 // row is ruled out.
 inline constexpr double kLeastSquaredDirection = 1e-100;
+// The flat sweep's reach, in smallest scales: the bound above is 2e-8 at 1e6 in double.
+// In float it is 1.1e-3 at 1e2, about the gap itself; the bound is loose (the
+// adversarial rays of speed.accel at 49-51 smallest scales find no difference) and
+// float renders only for the tests and the precision report.
 template <typename Real>
 constexpr double culling_reach() {
     return std::numeric_limits<Real>::digits > 30 ? 1e6 : 1e2;
 }
-// The tree's boxes are tried by slab tests alone, so the one rounding they must allow
-// for is the root's: within about 90 eps (1 + |o'|) of the unit sphere at most (the
-// tangent roots, bvh.h). A gap of gap_per_reach() |o'| holds that 50 times over in
-// double (1e-12 against 2e-14), so a box grown by kCullingGap culls rays from within
-// 1e9 smallest scales, and one grown more from farther (BoxGaps, slab_rays.h); float
-// keeps the reach above.
+// The tree's: a gap of gap_per_reach() |o'| holds the bound 50 times over in double
+// (1e-12 against 2e-14), so a box grown by kCullingGap culls rays from within 1e9
+// smallest scales, and one grown more from farther (BoxGaps, slab_rays.h); float keeps
+// the flat sweep's reach.
 template <typename Real>
 constexpr double gap_per_reach() {
     return std::numeric_limits<Real>::digits > 30 ? 1e-12 : kCullingGap / culling_reach<Real>();

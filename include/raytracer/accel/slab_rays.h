@@ -143,12 +143,25 @@ RT_ALWAYS_INLINE unsigned children_met(const WideNode<C, Width>& node, const Sla
     return mask & node.used;
 }
 
+// |scale| of an ellipsoid on each axis, and the least of the three.
+template <typename C, typename Real>
+void abs_scales(const Ellipsoid<Real>& e, C (&s)[3]) {
+    using std::abs;
+    s[0] = abs(C(e.scale.x)), s[1] = abs(C(e.scale.y)), s[2] = abs(C(e.scale.z));
+}
+template <typename C>
+C smallest_of(const C (&s)[3]) {
+    return std::min({s[0], s[1], s[2]});
+}
+
 // How far the tree grows an ellipsoid's box, and from how far the box may cull a ray
 // (exact_culling.h): grown by kCullingGap of each scale, it culls rays from within
 // 1e9 smallest scales (double), which covers nearly every scene. An ellipsoid thin or
 // small beside its scene (a disc 1e-9 thick seen from 30 away: |o'| = 3e10) is grown by
 // the larger gap that culling from anywhere in the scene needs, up to
-// kLargestCullingGap; past that, rays from afar try it unculled.
+// kLargestCullingGap; past that, rays from beyond its reach try it unculled. (Only
+// ellipsoids below 4e-12 of the scene's extent take the largest gap: in a scene with
+// one ellipsoid 1e12 times larger than all the others, every other box is doubled.)
 template <typename Real>
 class BoxGaps {
 public:
@@ -157,53 +170,53 @@ public:
     BoxGaps() = default;  // kCullingGap for every ellipsoid
     // For a scene whose rays start within `extent` (max-norm) of every point of every box.
     explicit BoxGaps(C extent) {
-        const C wanted = 2 * C(gap_per_reach<Real>()) * extent;  // then guard(s) = extent
-        if (!(wanted / C(kCullingGap) <= std::numeric_limits<C>::max())) return;
-        wanted_ = wanted, thin_ = wanted / C(kCullingGap);
+        const C needed = 2 * C(gap_per_reach<Real>()) * extent;  // gap times scale: guard = extent
+        if (!(needed / C(kCullingGap) <= std::numeric_limits<C>::max())) return;
+        needed_ = needed, grown_below_ = needed / C(kCullingGap);
     }
 
     // The gap of an ellipsoid whose smallest scale is `smallest`, in its unit sphere's space.
     C gap(C smallest) const {
-        return smallest >= thin_ ? C(kCullingGap) : std::min(C(kLargestCullingGap), wanted_ / smallest);
+        return smallest >= grown_below_ ? C(kCullingGap)
+                                        : std::min(C(kLargestCullingGap), needed_ / smallest);
     }
     // The max-norm distance from which its box may cull a ray: the reach that gap holds,
-    // halved, as the Euclidean distance is at most sqrt(3) times the max-norm one.
+    // halved, as the Euclidean distance is at most sqrt(3) times the max-norm one. 0 for
+    // a scale that is not a number.
     C guard(C smallest) const {
         const C guard = gap(smallest) / C(gap_per_reach<Real>()) * smallest / 2;
-        return guard <= std::numeric_limits<C>::max() ? guard : std::numeric_limits<C>::max();
+        return guard <= std::numeric_limits<C>::max() ? guard : guard > 0 ? std::numeric_limits<C>::max() : 0;
     }
-    // The smallest scales below which gap() exceeds kCullingGap.
-    C thin() const { return thin_; }
+    // The smallest scales below which gap() may exceed kCullingGap.
+    C grown_below() const { return grown_below_; }
 
 private:
-    C wanted_ = 0, thin_ = 0;
+    C needed_ = 0;       // the gap times the smallest scale that culling from anywhere needs
+    C grown_below_ = 0;  // needed_ / kCullingGap
 };
 
-template <typename C, typename Real>
-C smallest_scale(const Ellipsoid<Real>& e) {
-    using std::abs;
-    return std::min({abs(C(e.scale.x)), abs(C(e.scale.y)), abs(C(e.scale.z))});
-}
-
 // What BoxGaps is made from, gathered ellipsoid by ellipsoid: rays start at the eye (the
-// origin) or on a box, within c +- 2 s (a gap is at most 1), so within twice the
-// largest |c| + 2 |s| (max-norm) of every box; and the smallest scale of all.
+// origin) or on an ellipsoid, inside its box (within c +- (1 + kLargestCullingGap) s),
+// so within twice the largest |c| + (1 + kLargestCullingGap) |s| (max-norm) of every
+// box; and the smallest scale of all. A ray that starts elsewhere (a hit point's own
+// rounding) is still exact: each ray's origin is checked against the guards.
 template <typename C>
 struct SceneExtent {
     C farthest = 0, smallest = std::numeric_limits<C>::infinity();
 
     template <typename Real>
     void add(const Ellipsoid<Real>& e) {
-        using std::abs;
+        C s[3];
+        abs_scales(e, s);
         const C c[3] = {C(e.centre.x), C(e.centre.y), C(e.centre.z)};
-        const C s[3] = {abs(C(e.scale.x)), abs(C(e.scale.y)), abs(C(e.scale.z))};
-        for (int a = 0; a < 3; ++a) farthest = std::max(farthest, abs(c[a]) + 2 * s[a]);
-        smallest = std::min(smallest, smallest_scale<C>(e));
+        for (int a = 0; a < 3; ++a)
+            farthest = std::max(farthest, std::abs(c[a]) + (1 + C(kLargestCullingGap)) * s[a]);
+        smallest = std::min(smallest, smallest_of(s));
     }
     void add(const SceneExtent& other) {
         farthest = std::max(farthest, other.farthest), smallest = std::min(smallest, other.smallest);
     }
-    C extent() const { return 2 * farthest; }
+    C extent() const { return 2 * farthest; }  // from any such point to any other
 };
 
 // An ellipsoid's box: grown by its gap of each scale (BoxGaps), by 4 ulps of the centre
@@ -216,8 +229,9 @@ template <typename C, typename Real>
 BuildBox<C> inflated_box(const Ellipsoid<Real>& e, const BoxGaps<Real>& gaps) {
     using std::abs;
     const C c[3] = {C(e.centre.x), C(e.centre.y), C(e.centre.z)};
-    const C s[3] = {abs(C(e.scale.x)), abs(C(e.scale.y)), abs(C(e.scale.z))};
-    const C grow = 1 + gaps.gap(smallest_scale<C>(e));
+    C s[3];
+    abs_scales(e, s);
+    const C grow = 1 + gaps.gap(smallest_of(s));
     BuildBox<C> box;
     for (int a = 0; a < 3; ++a) {
         const C half = s[a] * grow + abs(c[a]) * 4 * std::numeric_limits<C>::epsilon() +
@@ -231,10 +245,12 @@ BuildBox<C> inflated_box(const Ellipsoid<Real>& e, const BoxGaps<Real>& gaps) {
 // and its guard distance (BoxGaps).
 template <typename C, typename Real>
 BuildItem<C> build_item(const Ellipsoid<Real>& e, std::uint32_t index, const BoxGaps<Real>& gaps) {
+    C s[3];
+    abs_scales(e, s);
     BuildItem<C> item;
     item.box = inflated_box<C>(e, gaps);
     item.centre[0] = C(e.centre.x), item.centre[1] = C(e.centre.y), item.centre[2] = C(e.centre.z);
-    item.guard = gaps.guard(smallest_scale<C>(e));
+    item.guard = gaps.guard(smallest_of(s));
     item.index = index;
     return item;
 }
