@@ -6,6 +6,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "raytracer/flat_sweep/eye_rays.h"
@@ -129,9 +130,9 @@ EyeRays<Real> make_eye_rays(const Tracer<Real>& tracer, const std::vector<PixelR
 template <typename Real>
 class FlatSweep {
 public:
-    FlatSweep(const Scene& scene, RowSink& sink, unsigned most_threads)
+    FlatSweep(const Scene& scene, Tracer<Real>&& tracer, RowSink& sink, unsigned most_threads)
         : scene_(scene),
-          tracer_(scene),
+          tracer_(std::move(tracer)),
           rects_(tracer_.screen_rects(scene)),
           spans_(tracer_.row_spans(scene)),
           background_row_(static_cast<std::size_t>(scene.columns) * 3),
@@ -149,8 +150,6 @@ public:
     }
 
     Workspace<Real> workspace() const { return Workspace<Real>(tracer_, rects_.size(), scene_.columns); }
-    // Whether the flat sweep renders the scene at all (Tracer::can_render()).
-    bool can_render() const { return tracer_.can_render(); }
 
     // Renders bands until none is left; after_row(r) after each, r its last row.
     template <typename AfterRow>
@@ -296,12 +295,15 @@ void sweep_rows(FlatSweep<Real>& sweep, const Scene& scene, unsigned threads, un
 template <typename Real>
 void render_flat_sweep_to(const Scene& scene, RowSink& sink, unsigned threads) {
     if constexpr (kFlatSweepPrecision<Real>) {
-        const unsigned most_threads = threads_asked(threads);
-        FlatSweep<Real> sweep(scene, sink, most_threads);
-        if (sweep.can_render()) return sweep_rows(sweep, scene, threads, most_threads);
+        Tracer<Real> tracer(scene);
+        if (tracer.can_render()) {
+            const unsigned most_threads = threads_asked(threads);
+            FlatSweep<Real> sweep(scene, std::move(tracer), sink, most_threads);
+            return sweep_rows(sweep, scene, threads, most_threads);
+        }
     }
-    // A precision or a scene the flat sweep does not render: the tree (once the sweep's
-    // tables are freed).
+    // A precision or a scene the flat sweep does not render: the tree (once the
+    // tracer's tables are freed).
     render_tree_to<Real>(scene, sink, threads);
 }
 
