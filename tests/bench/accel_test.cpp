@@ -518,7 +518,7 @@ std::vector<rt::SphereSpec> adversarial_ellipsoids(std::mt19937& g, double world
 // Rays of every kind at the ellipsoids, as BruteForce answers them (closest() and
 // occluded(), with and without a hint): from the camera at an ellipsoid's rim (through
 // the near plane); from a surface point along its tangent plane, off it by 0 to 1e-4
-// (the tangency allowance); from 49 to 1e11 smallest scales away grazing the rim (the
+// (the tangency allowance); from 49 to 1e14 smallest scales away grazing the rim (the
 // guard's boundary, 5e8 in double and 50 in float, max-norm; farther for the thin and
 // tiny ones, whose boxes are grown: BoxGaps); shadow and reflected rays
 // from an eye ray's hit point; rays head on from up to the guard distance, or from
@@ -709,10 +709,9 @@ TEST(bvh_float_directions_below_the_normal_range) {
     CHECK_EQ(differing, 0);
 }
 
-// Discs 1e-9 thick seen from 10 to 30 away (|o'| up to 3e10): their boxes are grown so
-// that they cull rays from anywhere in the scene (BoxGaps), where a gap of kCullingGap
-// culled nothing beyond 1e6 smallest scales and 2,000 of them took 4 s at 400x400
-// instead of 0.01 s. The images stay the reference's, in double and long double.
+// Discs 1e-9 thick seen from 10 to 30 away (|o'| up to 3e10, past the reach of a gap of
+// kCullingGap): their boxes are grown so that they cull rays from anywhere in the scene
+// (BoxGaps). The images stay the reference's, in double and long double.
 TEST(thin_discs_far_away_are_culled_and_render_as_the_reference) {
     const rt::BoxGaps<double> gaps(2 * 40.0);
     CHECK(gaps.gap(0.3) == rt::kCullingGap);

@@ -160,8 +160,8 @@ C smallest_of(const C (&s)[3]) {
 // small beside its scene (a disc 1e-9 thick seen from 30 away: |o'| = 3e10) is grown by
 // the larger gap that culling from anywhere in the scene needs, up to
 // kLargestCullingGap; past that, rays from beyond its reach try it unculled. (Only
-// ellipsoids below 4e-12 of the scene's extent take the largest gap: in a scene with
-// one ellipsoid 1e12 times larger than all the others, every other box is doubled.)
+// ellipsoids below 2e-12 of the scene's extent take the largest gap: in a scene with
+// one ellipsoid some 1e12 times larger than all the others, every other box is doubled.)
 template <typename Real>
 class BoxGaps {
 public:
