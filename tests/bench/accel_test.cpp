@@ -28,6 +28,7 @@
 #include "raytracer/render.h"
 #include "raytracer/render_tree.h"
 #include "scale_scenes.h"
+#include "scene_transforms.h"
 #include "stress_scenes.h"
 
 namespace {
@@ -52,11 +53,7 @@ rt::Scene hard_crowd(unsigned seed, int n) {
             e.centre = s.spheres.back().centre + rt::Vec3<double>{s.spheres.back().scale.x + e.scale.x, 0, 0};
         s.spheres.push_back(e);
     }
-    if (seed % 3 == 0) {  // far away, relative to the smallest scales
-        for (rt::SphereSpec& e : s.spheres) e.centre = e.centre * 1e4, e.scale = e.scale * 1e4;
-        for (rt::LightSpec& l : s.lights) l.position = l.position * 1e4;
-        s.near_plane *= 1e4, s.left *= 1e4, s.right *= 1e4, s.bottom *= 1e4, s.top *= 1e4;
-    }
+    if (seed % 3 == 0) s = transforms::scaled(s, 1e4);  // far away, relative to the smallest scales
     return s;
 }
 
@@ -540,6 +537,11 @@ int adversarial_rays_differing(unsigned seed, int rays) {
     const rt::Bvh<Real> tree(all);
     const V camera{Real(offset), Real(offset / 2), Real(-offset)};
     auto r = [&](double lo, double hi) { return Real(uniform(g, lo, hi)); };
+    auto smallest_scale = [](const rt::Ellipsoid<Real>& e) {
+        Real s[3];
+        rt::abs_scales(e, s);
+        return rt::smallest_of(s);
+    };
     int differing = 0;
     std::uint32_t tree_hint = rt::kNoEllipsoid;
     auto compare = [&](const V& origin, const V& direction, double min_t) {
@@ -575,8 +577,7 @@ int adversarial_rays_differing(unsigned seed, int rays) {
             case 3: {
                 const double away[] = {49,    50,    51,  1e2,  1e5,  1e7,  4.9e8, 5e8,
                                        5.1e8, 8.6e8, 1e9, 1e10, 1e11, 1e13, 1e14};
-                const Real smallest =
-                    std::min({std::abs(e.scale.x), std::abs(e.scale.y), std::abs(e.scale.z)});
+                const Real smallest = smallest_scale(e);
                 const V origin = e.centre + u * (smallest * Real(away[g() % 15]) * r(0.99, 1.01));
                 const V side = normalize(cross_product(u, V{0, 1, 0}));
                 const V rim = e.centre + V{side.x * std::abs(e.scale.x), side.y * std::abs(e.scale.y),
@@ -602,8 +603,7 @@ int adversarial_rays_differing(unsigned seed, int rays) {
             }
             case 5: {  // head on at an axis's tip (the surface nearest its box), from up to
                        // the guard distance or from across the scene, ending near the surface
-                const Real smallest =
-                    std::min({std::abs(e.scale.x), std::abs(e.scale.y), std::abs(e.scale.z)});
+                const Real smallest = smallest_scale(e);
                 const double reach = rt::kCullingGap / rt::gap_per_reach<Real>();
                 const unsigned axis = g() % 3;
                 const Real sign = g() % 2 != 0 ? 1 : -1;
@@ -649,18 +649,6 @@ TEST(bvh_adversarial_rays_match_brute_force) {
     }
 }
 
-namespace {
-
-// The scene with every length times f (camera frame, ellipsoids, lights).
-rt::Scene scaled(rt::Scene s, double f) {
-    for (rt::SphereSpec& e : s.spheres) e.centre = e.centre * f, e.scale = e.scale * f;
-    for (rt::LightSpec& l : s.lights) l.position = l.position * f;
-    s.near_plane *= f, s.left *= f, s.right *= f, s.bottom *= f, s.top *= f;
-    return s;
-}
-
-}  // namespace
-
 // The flat sweep of scenes whose lengths are far from 1 (random scene 1, 11 ellipsoids,
 // scaled by 1e-90 to 1e150): 70 to 108 pixels came out brighter than the reference where
 // a quantity of the 4th degree in the lengths underflows or overflows in its shortcuts;
@@ -671,7 +659,7 @@ TEST(scenes_of_extreme_lengths_render_as_the_reference) {
     scene.columns = 41, scene.rows = 31;
     for (double f : {1e-90, 1e90, 1e-300, 1e150, 1e154}) {
         const std::string name = "random scene 1 scaled by 1e" + std::to_string(std::lround(std::log10(f)));
-        const rt::Scene s = scaled(scene, f);
+        const rt::Scene s = transforms::scaled(scene, f);
         const bool same = rt::render<double>(s, 1).rgb == rt::render_reference<double>(s, 1).rgb;
         if (!same) std::cerr << name << ": the render differs from the reference\n";
         CHECK(same);
