@@ -1,11 +1,13 @@
 #include "raytracer/interrupts.h"
 
 #include <atomic>
+#include <chrono>
 #include <csignal>
 #include <cstddef>
 #include <cstring>
 #include <cwchar>
 #include <initializer_list>
+#include <thread>
 
 #ifdef _WIN32
 #include <io.h>  // _unlink, _write
@@ -17,7 +19,8 @@
 namespace rt {
 namespace {
 
-// The handler reads only these, and calls only unlink, write and _exit, which are
+// The handler reads only these, takes `phase` below by a compare-exchange, and calls
+// only unlink, write and _exit (and, on Windows, signal() to stay installed), which are
 // async-signal-safe. A path is copied into cleanup_path before cleanup_set is raised,
 // so the handler never sees half a path: the flags are lock-free atomics, stored with
 // release and loaded with acquire, as the handler may run on any thread (a render
@@ -35,6 +38,11 @@ std::atomic<int> cleanup_set{0};  // 1: cleanup_path, 2: cleanup_wide_path
 char erase_text[kMaxErasedLine + 3];
 std::atomic<int> erase_line{0};
 std::atomic<int> output_is_stream{0};
+// Who ends the run: kRunning until a handler takes kInterrupted (and exits) or
+// hold_interrupts() takes kHeld (the image is being put in place), whichever is first:
+// one compare-exchange each, so that exactly one of them wins.
+enum Phase : int { kRunning, kHeld, kInterrupted };
+std::atomic<int> phase{kRunning};
 
 void say(const char* text) {
 #ifdef _WIN32
@@ -45,6 +53,13 @@ void say(const char* text) {
 }
 
 extern "C" void render_on_interrupt(int signal_number) {
+    int running = kRunning;
+    if (!phase.compare_exchange_strong(running, kInterrupted)) {  // the image is (being) put in place
+#ifdef _WIN32
+        (void)std::signal(signal_number, render_on_interrupt);  // Windows reset it to SIG_DFL before the call
+#endif
+        return;
+    }
 #ifdef _WIN32
     const int cleanup = cleanup_set.load(std::memory_order_acquire);
     if (cleanup == 1) (void)_unlink(cleanup_path);
@@ -77,6 +92,7 @@ void install_interrupt_handlers() {
 #else
     struct sigaction action {};
     action.sa_handler = render_on_interrupt;
+    action.sa_flags = SA_RESTART;  // a handler may return (hold_interrupts()): no EINTR
     sigemptyset(&action.sa_mask);
     // One handler at a time: a second signal waits until the first has exited.
     for (const int s : {SIGINT, SIGTERM, SIGHUP}) (void)sigaddset(&action.sa_mask, s);
@@ -87,6 +103,17 @@ void install_interrupt_handlers() {
     }
     (void)std::signal(SIGXFSZ, SIG_IGN);
 #endif
+}
+
+void hold_interrupts() {
+    int running = kRunning;
+    if (phase.compare_exchange_strong(running, kHeld) || running == kHeld) return;
+    for (;;) std::this_thread::sleep_for(std::chrono::hours(1));  // the handler is exiting
+}
+
+void release_interrupts() {
+    int held = kHeld;
+    (void)phase.compare_exchange_strong(held, kRunning);
 }
 
 void clear_interrupt_cleanup() { cleanup_set.store(0, std::memory_order_release); }

@@ -7,6 +7,10 @@
 #include <new>
 #include <string>
 
+#ifndef _WIN32
+#include <fcntl.h>
+#endif
+
 #include "raytracer/command_line.h"
 #include "raytracer/helper_pool.h"
 #include "raytracer/interrupts.h"
@@ -82,15 +86,26 @@ int cannot_write(const std::string& scene_file, const rt::Scene& scene, const rt
     return kCannotWrite;
 }
 
+// Standard streams that whoever started the program closed (2>&-) are opened on the
+// null device, so that no file the program opens takes their numbers: the image opened
+// as descriptor 2 would receive the progress line meant for standard error. Best
+// effort: where /dev/null cannot be opened, they stay closed.
+void keep_standard_streams_apart() {
+#ifndef _WIN32
+    for (int stream = 0; stream <= 2; ++stream)
+        if (::fcntl(stream, F_GETFD) < 0 && errno == EBADF && ::open("/dev/null", O_RDWR) < 0) return;
+#endif
+}
+
 int render(const rt::CommandLine& line, const rt::Scene& scene) {
     const rt::OutputChoice output =
         rt::choose_output(scene.output, line.output_given ? &line.output : nullptr, line.scene_file);
     if (!output.refusal.empty()) return cannot_write(line.scene_file, scene, output, output.refusal);
     if (output.destination == rt::Destination::StandardOutput && rt::is_terminal(stdout)) {
         return cannot_write(line.scene_file, scene, output,
-                            "'-' is a terminal, expected a pipe or a file for a binary image");
+                            rt::shown(output.path, rt::kMaxShownPath) +
+                                " is a terminal, expected a pipe or a file for a binary image");
     }
-    rt::install_interrupt_handlers();
     rt::set_interrupt_output_is_stream(output.destination != rt::Destination::Replace);
     // The file is created before the render, so that an unwritable OUTPUT is reported
     // before the render is spent on it; nothing of it is left on any error.
@@ -138,6 +153,8 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "raytracer.exe: error: %s (see --help)\n", line.error.c_str());
         return kBadUsage;
     }
+    keep_standard_streams_apart();
+    rt::install_interrupt_handlers();  // reading a large scene takes a while too
     const std::string shown_file = rt::shown(line.scene_file, rt::kMaxShownPath);
     // The scene's size, kept for a message about running out of memory while rendering it.
     struct Size {

@@ -334,6 +334,7 @@ void PendingFile::discard() {
 std::string PendingFile::commit() {
     if (!open_) return error_.empty() ? shown(name_, kMaxShownPath) + " was already written" : error_;
     std::string error;
+    if (write_error_ == 0) hold_interrupts();  // the image is complete: no interrupt may undo it now
     if (write_error_ != 0) {
         error = write_failure();
     } else if (destination_ != Destination::Replace) {
@@ -343,7 +344,9 @@ std::string PendingFile::commit() {
         const bool flushed = true;
 #endif
         close_file();
-        return flushed ? std::string() : shown(name_, kMaxShownPath) + " could not be written in full";
+        if (flushed) return {};
+        release_interrupts();
+        return shown(name_, kMaxShownPath) + " could not be written in full";
     } else if (unnamed_) {
         if (link_unnamed(error))
             error.clear();
@@ -365,6 +368,8 @@ std::string PendingFile::commit() {
     if (error.empty()) {
         clear_interrupt_cleanup();
         temporary_.clear();  // it is the target now
+    } else {
+        release_interrupts();
     }
     discard();
     return error;

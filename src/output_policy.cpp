@@ -45,9 +45,10 @@ bool same_file(const std::string& a, const std::string& b) {
     return identity(a, x) && identity(b, y) && same_identity(x, y);
 }
 
-bool standard_output_is(const std::string& file) {
+// Whether standard output (stream 1) or standard error (2) is this file.
+bool standard_stream_is(int stream, const std::string& file) {
     BY_HANDLE_FILE_INFORMATION x{}, y{};
-    const HANDLE out = GetStdHandle(STD_OUTPUT_HANDLE);
+    const HANDLE out = GetStdHandle(stream == 1 ? STD_OUTPUT_HANDLE : STD_ERROR_HANDLE);
     return out != INVALID_HANDLE_VALUE && out != nullptr && GetFileType(out) == FILE_TYPE_DISK &&
            GetFileInformationByHandle(out, &x) != 0 && identity(file, y) && same_identity(x, y);
 }
@@ -71,10 +72,11 @@ bool same_file(const std::string& a, const std::string& b) {
     return ::stat(a.c_str(), &x) == 0 && ::stat(b.c_str(), &y) == 0 && same_identity(x, y);
 }
 
-bool standard_output_is(const std::string& file) {
+// Whether standard output (stream 1) or standard error (2) is this file.
+bool standard_stream_is(int stream, const std::string& file) {
     struct stat x {
     }, y{};
-    return ::fstat(STDOUT_FILENO, &x) == 0 && ::stat(file.c_str(), &y) == 0 && same_identity(x, y);
+    return ::fstat(stream, &x) == 0 && ::stat(file.c_str(), &y) == 0 && same_identity(x, y);
 }
 
 Existing what_is_at(const std::string& path) {
@@ -131,7 +133,7 @@ OutputChoice choose_output(const std::string& scene_output, const std::string* u
     if (choice.named_by_user && choice.path == "-") {
         choice.destination = Destination::StandardOutput;
         // raytracer.exe -o - scene.txt >> scene.txt
-        if (standard_output_is(scene_file))
+        if (standard_stream_is(1, scene_file))
             choice.refusal =
                 "- (standard output) is the scene file itself, expected another file for the image";
         return choice;
@@ -146,6 +148,18 @@ OutputChoice choose_output(const std::string& scene_output, const std::string* u
     if (same_file(choice.path, scene_file)) {
         choice.refusal = shown(choice.path, kMaxShownPath) +
                          " is the scene file itself, expected another file for the image";
+        return choice;
+    }
+    // -o /dev/stdout (or /dev/fd/1, or the file standard output goes to): written as
+    // standard output, not replaced (that would replace the link, or /dev's own entry);
+    // standard error carries the messages, not the image.
+    if (choice.named_by_user && standard_stream_is(1, choice.path)) {
+        choice.destination = Destination::StandardOutput;
+        return choice;
+    }
+    if (choice.named_by_user && standard_stream_is(2, choice.path)) {
+        choice.refusal = shown(choice.path, kMaxShownPath) +
+                         " is standard error, where the messages go, expected another file for the image";
         return choice;
     }
     if (existing == Existing::Other) {

@@ -1,6 +1,7 @@
 // What an interrupted run (SIGINT, SIGTERM, SIGHUP; Ctrl+C and Ctrl+Break on Windows)
 // does: removes the named temporary file being written, if any, prints one line saying
-// so, and exits with 128 + the signal's number. A signal that was ignored when the
+// so, and exits with 128 + the signal's number; once the image is being put in place,
+// nothing (hold_interrupts()). A signal that was ignored when the
 // program started (nohup) stays ignored. SIGXFSZ is ignored, so that a file-size
 // limit (ulimit -f) makes a write fail, reported like a full disk, instead of killing
 // the process silently.
@@ -8,8 +9,17 @@
 
 namespace rt {
 
-// Installs the handlers; call once, before the output file is created.
+// Installs the handlers; call once, before the scene is read.
 void install_interrupt_handlers();
+
+// The image is about to be put in place (PendingFile::commit()): from this call on, an
+// interrupt is ignored, since its handler would otherwise run after the image is in
+// place and say "no image written". Where a handler is already ending the program (on
+// another thread), this waits for it and never returns, so the image is not put in
+// place behind its back.
+void hold_interrupts();
+// The image was not put in place after all (an error): interrupts end the program again.
+void release_interrupts();
 
 // The named temporary file a handler must remove. The path is copied into a fixed
 // buffer the handler can read; one longer than the buffer is refused (returns false)
