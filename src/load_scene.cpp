@@ -50,6 +50,12 @@ Scene load_scene(const std::string& path) {
     const unsigned threads = available_cores();
     std::error_code ec;
     const std::uintmax_t size = std::filesystem::file_size(path, ec);
+    auto too_large = [&path] {
+        return SceneError(
+            path, 0,
+            "is larger than " + std::to_string(kMaxSceneFileBytes >> 20) + " MiB, expected a scene file");
+    };
+    if (!ec && size > kMaxSceneFileBytes) throw too_large();  // refused before a byte is read
     // A large file of known size: parsed as read, in pieces; read again as a stream
     // where it changed meanwhile (the stream read starts where the handle is: at the start).
     if (kReadsInPieces && !ec && size >= kReadInPiecesBytes && size <= kMaxSceneFileBytes && threads > 1) {
@@ -64,11 +70,7 @@ Scene load_scene(const std::string& path) {
     char buffer[1 << 14];
     for (std::size_t got; (got = std::fread(buffer, 1, sizeof buffer, in.get())) > 0;) {
         bytes.insert(bytes.end(), buffer, buffer + got);
-        if (bytes.size() > kMaxSceneFileBytes) {
-            throw SceneError(
-                path, 0,
-                "is larger than " + std::to_string(kMaxSceneFileBytes >> 20) + " MiB, expected a scene file");
-        }
+        if (bytes.size() > kMaxSceneFileBytes) throw too_large();  // grew, or a stream of unknown size
     }
     if (std::ferror(in.get()) != 0) throw cannot_read(true, errno);
     const std::string_view text(bytes.data(), bytes.size());

@@ -40,8 +40,8 @@ constexpr std::size_t kShortestSphereLine = 36;
 // pages and a fault each: random 100k read and prepared, 6,400 faults and 121 ms
 // against 2,900-3,600 and 87-90 ms.
 struct PieceThread {
-    std::vector<char> buffer;              // a file's chunk (file_pieces.h)
-    std::vector<std::string_view> tokens;  // of the current line
+    std::vector<char> buffer;  // a file's chunk (file_pieces.h)
+    LineTokens tokens;         // of the current line
     LargeVector<SphereSpec> spheres;
 };
 
@@ -192,7 +192,7 @@ Scene merge(std::vector<Piece>& pieces, const std::string& file_name) {
     }
     SceneBuilder all;
     int offset = 0;
-    std::vector<std::string_view> tokens;
+    LineTokens tokens;
     try {
         for (std::size_t k = 0; k < pieces.size(); ++k) {
             Piece& p = pieces[k];

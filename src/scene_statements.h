@@ -13,6 +13,7 @@
 
 #include "raytracer/parser.h"
 #include "raytracer/scene.h"
+#include "raytracer/scene_lines.h"
 #include "raytracer/scene_numbers.h"
 #include "raytracer/shown.h"
 
@@ -87,7 +88,8 @@ inline const Statement& statement_of(std::string_view keyword, int line) {
 // The fields of one statement, converted and checked for form (not yet for meaning),
 // each kind in the order given: no allocation per line.
 struct Fields {
-    static constexpr std::size_t kMax = 15;   // SPHERE's
+    static constexpr std::size_t kMax = 15;  // SPHERE's
+    static_assert(kMax + 1 <= LineTokens::kKept, "a statement's keyword and fields are kept whole");
     std::string_view names[kMax], raw[kMax];  // raw: every field as written, for messages
     double numbers[kMax] = {};
     long long counts[kMax] = {};
@@ -98,8 +100,8 @@ class SceneBuilder {
 public:
     Scene scene;
 
-    void statement(const Statement& found, const std::vector<std::string_view>& tokens, int line) {
-        const std::size_t given = tokens.size() - 1;
+    void statement(const Statement& found, const LineTokens& tokens, int line) {
+        const std::size_t given = tokens.count - 1;
         const std::size_t wanted = found.field_names.size();
         if (given != wanted) {
             fail(line, std::string(found.keyword) + " has " + std::to_string(given) + " field" +

@@ -326,6 +326,30 @@ TEST(out_of_memory_names_the_scene_size) {
                          "100000 ellipsoids, 2 lights), expected a smaller scene\n"));
     CHECK_EQ(folder.names(), std::string("oom.txt"));
 }
+
+// A scene file over the size limit is refused by its size, before any of it is read: in
+// 100 MB of address space a file of 100 MB (sparse: it costs no disk) is "too large", not
+// "out of memory reading" it; and a line's fields past a statement's are only counted.
+TEST(oversized_scene_files_and_lines_are_refused_within_little_memory) {
+    const Scratch folder;
+    { std::ofstream(folder.work / "huge.txt"); }
+    fs::resize_file(folder.work / "huge.txt", std::uintmax_t{100} << 20);
+    Options options;
+    options.address_space_limit = 100L << 20;
+    CHECK_EQ(run(folder, {"huge.txt"}, options), 1);
+    CHECK_EQ(captured_stderr(folder),
+             std::string("huge.txt: error: is larger than 64 MiB, expected a scene file\n"));
+
+    // A line of ten million fields is counted for its message, not stored field by field.
+    std::string line = "SPHERE";
+    for (int i = 0; i < 10000000; ++i) line += " 1";
+    write_bytes(folder.work / "long_line.txt", line + "\n");
+    CHECK_EQ(run(folder, {"long_line.txt"}, options), 1);
+    CHECK_EQ(captured_stderr(folder),
+             std::string("long_line.txt:1: error: SPHERE has 10000000 fields, expected 15: SPHERE <name> "
+                         "<pos x> <pos y> <pos z> <scl x> <scl y> <scl z> <r> <g> <b> <Ka> <Kd> <Ks> <Kr> "
+                         "<n>\n"));
+}
 #endif
 
 // A replaced image keeps the permissions of the file it replaces; a new one gets the

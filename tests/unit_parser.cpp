@@ -562,11 +562,11 @@ TEST(split_line_matches_a_byte_by_byte_split) {
     auto line_end = [](char c) { return c == '\n' || c == '\r'; };
     std::mt19937 random(7);
     const std::string common = "SPHERE 0.5e-3 -12 abc\x01\x7f\xc3\xa9";
-    std::vector<std::string_view> tokens;
+    rt::LineTokens tokens;
     int mismatches = 0;
     for (int round = 0; round < 20000; ++round) {
         std::string line;
-        const std::size_t length = random() % 48;
+        const std::size_t length = round % 100 == 0 ? 2000 : random() % 48;  // past kKept tokens too
         for (std::size_t k = 0; k < length; ++k) {
             const unsigned pick = random() % 16;
             line += pick < 10   ? common[random() % common.size()]
@@ -592,7 +592,10 @@ TEST(split_line_matches_a_byte_by_byte_split) {
             expected.push_back(text.substr(start, i - start));
         }
         const std::size_t got = rt::split_line(text, tokens);
-        mismatches += got != end || (end != std::string_view::npos && tokens != expected);
+        bool same = tokens.count == expected.size();
+        for (std::size_t k = 0; same && k < std::min(expected.size(), rt::LineTokens::kKept); ++k)
+            same = tokens[k] == expected[k];
+        mismatches += got != end || (end != std::string_view::npos && !same);
     }
     CHECK_EQ(mismatches, 0);
 }

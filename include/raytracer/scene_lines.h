@@ -7,7 +7,6 @@
 #include <cstdint>
 #include <cstring>
 #include <string_view>
-#include <vector>
 
 #include "raytracer/bit_scan.h"
 
@@ -54,11 +53,22 @@ inline std::size_t past_token_words(std::string_view text, std::size_t i) {
 }
 }  // namespace detail
 
-// Splits the first line of text into tokens (reused from line to line: no allocation
-// per line) and returns where it ends: at its first CR or LF, or at the end; npos if it
-// holds a NUL byte.
-inline std::size_t split_line(std::string_view text, std::vector<std::string_view>& tokens) {
-    tokens.clear();
+// A line's tokens: the first kKept of them (a SPHERE line's keyword and 15 fields), and
+// how many there are in all, so that a line of millions of tokens is counted for its
+// message, not stored.
+struct LineTokens {
+    static constexpr std::size_t kKept = 16;
+    std::string_view kept[kKept];
+    std::size_t count = 0;
+
+    bool empty() const { return count == 0; }
+    std::string_view operator[](std::size_t i) const { return kept[i]; }  // i < min(count, kKept)
+};
+
+// Splits the first line of text into tokens and returns where it ends: at its first CR
+// or LF, or at the end; npos if it holds a NUL byte.
+inline std::size_t split_line(std::string_view text, LineTokens& tokens) {
+    tokens.count = 0;
     std::size_t i = 0;
     const std::size_t n = text.size();
     for (;;) {
@@ -68,7 +78,8 @@ inline std::size_t split_line(std::string_view text, std::vector<std::string_vie
         const std::size_t start = i;
         i = detail::past_token_words(text, i);
         while (i < n && detail::kind_of(text[i]) == detail::kToken) ++i;
-        tokens.push_back(text.substr(start, i - start));
+        if (tokens.count < LineTokens::kKept) tokens.kept[tokens.count] = text.substr(start, i - start);
+        ++tokens.count;
     }
 }
 
