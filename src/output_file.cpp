@@ -142,7 +142,12 @@ void PendingFile::open_replacement() {
     }
     const NativePath folder = folder_of(target_).native();
     if (!open_unnamed(folder)) open_named(folder);
-    if (open_ && replaces_) (void)fchmod(fd_, static_cast<mode_t>(keep_mode_));
+    if (open_ && replaces_) {
+        // Its owner and group too, where this user may give them (root replacing another
+        // user's file); chown() clears set-user-ID bits, so it comes before chmod().
+        (void)!fchown(fd_, existing.st_uid, existing.st_gid);
+        (void)fchmod(fd_, static_cast<mode_t>(keep_mode_));
+    }
 }
 
 bool PendingFile::open_unnamed(const NativePath& folder) {

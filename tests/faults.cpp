@@ -381,6 +381,31 @@ TEST(a_replaced_file_keeps_its_mode) {
     }
 }
 
+// Run by root (as CI is), a replaced image keeps the owner and group of the file it
+// replaces, so that its owner can still read it.
+TEST(root_replacing_a_file_keeps_its_owner) {
+    if (geteuid() != 0) {
+        std::cout << "skip  root_replacing_a_file_keeps_its_owner: not running as root\n";
+        return;
+    }
+    for (const bool named : {false, true}) {
+        const Scratch folder;
+        write_bytes(folder.work / "scene.txt", small_scene("out.ppm"));
+        write_bytes(folder.work / "out.ppm", kPrecious);
+        CHECK_EQ(chown((folder.work / "out.ppm").c_str(), 65534, 65534), 0);
+        CHECK_EQ(chmod((folder.work / "out.ppm").c_str(), 0600), 0);
+        Options options;
+        options.named_temporary = named;
+        CHECK_EQ(run(folder, {"scene.txt"}, options), 0);
+        struct stat replaced {};
+        CHECK_EQ(stat((folder.work / "out.ppm").c_str(), &replaced), 0);
+        CHECK_EQ(replaced.st_uid, uid_t{65534});
+        CHECK_EQ(replaced.st_gid, gid_t{65534});
+        CHECK_EQ(replaced.st_mode & 07777, mode_t{0600});
+        CHECK_EQ(read_bytes(folder.work / "out.ppm").substr(0, 2), std::string("P6"));
+    }
+}
+
 // A legal name of 240 bytes: the temporary's name must fit the folder's limit too.
 TEST(a_240_byte_output_name_works) {
     const std::string name = std::string(236, 'n') + ".ppm";
