@@ -106,7 +106,6 @@ int render(const rt::CommandLine& line, const rt::Scene& scene) {
                             rt::shown(output.path, rt::kMaxShownPath) +
                                 " is a terminal, expected a pipe or a file for a binary image");
     }
-    rt::set_interrupt_output_is_stream(output.destination != rt::Destination::Replace);
     // The file is created before the render, so that an unwritable OUTPUT is reported
     // before the render is spent on it; nothing of it is left on any error.
     rt::PendingFile file(output.path.c_str(), output.destination);

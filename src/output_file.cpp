@@ -230,6 +230,8 @@ void PendingFile::close_file() {
 
 void PendingFile::write(const void* data, std::size_t size) {
     if (!open_ || write_error_ != 0) return;
+    if (!streaming_ && destination_ != Destination::Replace)
+        set_interrupt_output_is_stream(streaming_ = true);
     const char* bytes = static_cast<const char*>(data);
     while (size > 0) {
         const ssize_t done = ::write(fd_, bytes, size);
@@ -302,6 +304,8 @@ void PendingFile::close_file() {
 
 void PendingFile::write(const void* data, std::size_t size) {
     if (!open_ || write_error_ != 0) return;
+    if (!streaming_ && destination_ != Destination::Replace)
+        set_interrupt_output_is_stream(streaming_ = true);
     if (std::fwrite(data, 1, size, file_) != size) write_error_ = errno != 0 ? errno : ENOSPC;
 }
 

@@ -444,6 +444,15 @@ TEST(devices_and_fifos_only_when_the_user_names_them) {
     CHECK_EQ(wait_for(pid), 0);
     CHECK(fs::is_fifo(folder.work / "fifo"));
     CHECK_EQ(folder.names(), std::string("fifo image.ppm scene.txt"));
+
+    // Interrupted while it waits for a reader, nothing of the image is out yet.
+    const pid_t waiting = start(folder, {"scene.txt", "-o", "fifo"});
+    wait_until_catching(waiting, SIGINT);
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    kill(waiting, SIGINT);
+    CHECK_EQ(wait_for(waiting), 128 + SIGINT);
+    CHECK_EQ(captured_stderr(folder),
+             std::string("raytracer.exe: error: interrupted by SIGINT, no image written\n"));
 }
 
 // The scene file under another name is still the scene file: device and inode decide.

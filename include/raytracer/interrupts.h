@@ -35,8 +35,9 @@ void clear_interrupt_cleanup();
 // many characters before its message. At most kMaxErasedLine.
 inline constexpr int kMaxErasedLine = 160;
 void set_interrupt_erases_line(int length);
-// Whether the image goes straight to a stream (standard output, a FIFO, a device), so
-// that part of it may already be out: the message says it is incomplete.
+// Whether part of the image may already be out: it goes straight to a stream (standard
+// output, a FIFO, a device) and its first bytes have been written (PendingFile::write()).
+// The message then says it is incomplete, not that no image was written.
 void set_interrupt_output_is_stream(bool stream);
 
 }  // namespace rt

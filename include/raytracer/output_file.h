@@ -68,9 +68,10 @@ private:
 #else
     int fd_ = -1;
 #endif
-    bool open_ = false;      // the file is ours to write
-    bool unnamed_ = false;   // created with O_TMPFILE: no name until commit()
-    bool replaces_ = false;  // the target existed: it is replaced, not created
+    bool open_ = false;       // the file is ours to write
+    bool unnamed_ = false;    // created with O_TMPFILE: no name until commit()
+    bool replaces_ = false;   // the target existed: it is replaced, not created
+    bool streaming_ = false;  // bytes have gone to a stream (interrupts.h is told)
     unsigned keep_mode_ = 0;
     int write_error_ = 0;  // errno of the first failed write; 0: none
     std::string error_;
