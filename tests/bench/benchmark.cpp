@@ -248,6 +248,12 @@ int main(int argc, char** argv) {
         for (const auto& entry : fs::directory_iterator(scenes_dir))
             if (entry.path().extension() == ".txt") b.course.push_back(entry.path());
     std::sort(b.course.begin(), b.course.end());
+    if (b.course.empty()) {  // --course names the folder that holds scenes/ (../shared/course-tests)
+        std::fprintf(stderr,
+                     "benchmark: no scene files in %s, expected --course naming the folder above it\n",
+                     scenes_dir.string().c_str());
+        return 2;
+    }
     const fs::path povray = opt.count("povray") ? fs::absolute(opt["povray"]) : fs::path();
     const fs::path make_scene = opt.count("make-scene") ? fs::absolute(opt["make-scene"]) : fs::path();
     const fs::path embree = opt.count("embree") ? fs::absolute(opt["embree"]) : fs::path();
