@@ -1,10 +1,10 @@
 // What an interrupted run (SIGINT, SIGTERM, SIGHUP; Ctrl+C and Ctrl+Break on Windows)
 // does: removes the named temporary file being written, if any, prints one line saying
 // so, and exits with 128 + the signal's number; once the image is being put in place,
-// nothing (hold_interrupts()). A signal that was ignored when the
-// program started (nohup) stays ignored. SIGXFSZ is ignored, so that a file-size
-// limit (ulimit -f) makes a write fail, reported like a full disk, instead of killing
-// the process silently.
+// nothing (hold_interrupts()). A signal that was ignored when the program started
+// (nohup) stays ignored. SIGXFSZ is ignored, so that a file-size limit (ulimit -f)
+// makes a write fail, reported like a full disk, instead of killing the process
+// silently.
 #pragma once
 
 namespace rt {
