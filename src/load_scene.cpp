@@ -1,5 +1,6 @@
 // Reading a scene file: what is not a scene file at all (missing, unreadable, a folder,
 // too large, empty, UTF-16) is refused here, with no line; the text goes to parse_scene().
+#include <algorithm>
 #include <cerrno>
 #include <cstdint>
 #include <cstdio>
@@ -69,8 +70,12 @@ Scene load_scene(const std::string& path) {
     if (!ec && size <= kMaxSceneFileBytes) bytes.reserve(static_cast<std::size_t>(size));
     char buffer[1 << 14];
     for (std::size_t got; (got = std::fread(buffer, 1, sizeof buffer, in.get())) > 0;) {
+        // A stream of unknown size (a pipe, /dev/zero) grows the buffer by doubling, but
+        // never past the limit: at most 96 MiB while the last 32 are copied, not 192.
+        if (bytes.size() + got > kMaxSceneFileBytes) throw too_large();
+        if (bytes.size() + got > bytes.capacity())
+            bytes.reserve(std::min(kMaxSceneFileBytes, std::max(2 * bytes.capacity(), bytes.size() + got)));
         bytes.insert(bytes.end(), buffer, buffer + got);
-        if (bytes.size() > kMaxSceneFileBytes) throw too_large();  // grew, or a stream of unknown size
     }
     if (std::ferror(in.get()) != 0) throw cannot_read(true, errno);
     const std::string_view text(bytes.data(), bytes.size());

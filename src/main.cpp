@@ -86,14 +86,15 @@ int cannot_write(const std::string& scene_file, const rt::Scene& scene, const rt
     return kCannotWrite;
 }
 
-// Standard streams that whoever started the program closed (2>&-) are opened on the
-// null device, so that no file the program opens takes their numbers: the image opened
-// as descriptor 2 would receive the progress line meant for standard error. Best
-// effort: where /dev/null cannot be opened, they stay closed.
+// Standard streams that whoever started the program closed (2>&-) are held open on the
+// root folder, read-only, so that no file the program opens takes their numbers (the
+// image opened as descriptor 2 would receive the progress line meant for standard
+// error), while writing to them still fails as it did when closed: -o - >&- is an
+// error, not an image sent nowhere. Best effort: where it cannot, they stay closed.
 void keep_standard_streams_apart() {
 #ifndef _WIN32
     for (int stream = 0; stream <= 2; ++stream)
-        if (::fcntl(stream, F_GETFD) < 0 && errno == EBADF && ::open("/dev/null", O_RDWR) < 0) return;
+        if (::fcntl(stream, F_GETFD) < 0 && errno == EBADF && ::open("/", O_RDONLY | O_DIRECTORY) < 0) return;
 #endif
 }
 

@@ -90,7 +90,7 @@ bool replace_file(const fs::path& from, const fs::path& to, std::string& error) 
 PendingFile::PendingFile(const char* file_name, Destination destination)
     : name_(file_name == nullptr ? "" : file_name), destination_(destination) {
     if (destination_ == Destination::StandardOutput) {
-        name_ = "-";
+        if (name_.empty()) name_ = "-";  // else as the user named it (-o /dev/stdout)
 #ifdef _WIN32
         (void)_setmode(_fileno(stdout), _O_BINARY);  // no "\n" -> "\r\n" in the image
         file_ = stdout;
@@ -230,9 +230,9 @@ void PendingFile::close_file() {
 
 void PendingFile::write(const void* data, std::size_t size) {
     if (!open_ || write_error_ != 0) return;
-    if (!streaming_ && destination_ != Destination::Replace)
-        set_interrupt_output_is_stream(streaming_ = true);
+    stream_bytes_ahead();
     const char* bytes = static_cast<const char*>(data);
+    const std::size_t total = size;
     while (size > 0) {
         const ssize_t done = ::write(fd_, bytes, size);
         if (done < 0 && errno == EINTR) continue;
@@ -243,6 +243,7 @@ void PendingFile::write(const void* data, std::size_t size) {
         bytes += done;
         size -= static_cast<std::size_t>(done);
     }
+    stream_bytes_out(total);
 }
 
 // WHY: on ext4 (delayed allocation, auto_da_alloc) renaming a new file over an existing
@@ -251,6 +252,7 @@ void PendingFile::write(const void* data, std::size_t size) {
 // program (docs/speed.md). Blocks allocated up front by fallocate() are not delayed,
 // so the rename does not wait for them. Elsewhere nothing is done.
 void PendingFile::expect_size(std::uint64_t bytes) {
+    expected_ = bytes;
 #if defined(__linux__)
     if (open_ && destination_ == Destination::Replace && bytes > 0)
         (void)fallocate(fd_, 0, 0, static_cast<off_t>(bytes));
@@ -304,13 +306,28 @@ void PendingFile::close_file() {
 
 void PendingFile::write(const void* data, std::size_t size) {
     if (!open_ || write_error_ != 0) return;
-    if (!streaming_ && destination_ != Destination::Replace)
-        set_interrupt_output_is_stream(streaming_ = true);
-    if (std::fwrite(data, 1, size, file_) != size) write_error_ = errno != 0 ? errno : ENOSPC;
+    stream_bytes_ahead();
+    if (std::fwrite(data, 1, size, file_) != size)
+        write_error_ = errno != 0 ? errno : ENOSPC;
+    else
+        stream_bytes_out(size);
 }
 
-void PendingFile::expect_size(std::uint64_t bytes) { (void)bytes; }
+void PendingFile::expect_size(std::uint64_t bytes) { expected_ = bytes; }
 #endif  // _WIN32
+
+// Around each write to a stream (standard output, a FIFO, a device): from the first on,
+// an interrupt says the image is incomplete rather than not written; once the last
+// expected byte is out, it has nothing left to stop (hold_interrupts()). Not before that
+// write: a reader that never reads would leave it blocked and deaf to Ctrl+C.
+void PendingFile::stream_bytes_ahead() const {
+    if (destination_ != Destination::Replace) set_interrupt_output_is_stream(true);
+}
+void PendingFile::stream_bytes_out(std::size_t size) {
+    if (destination_ == Destination::Replace) return;
+    written_ += size;
+    if (expected_ != 0 && written_ >= expected_) hold_interrupts();
+}
 
 std::string PendingFile::write_failure() const {
     const std::string start = shown(name_, kMaxShownPath) + " could not be written in full: ";

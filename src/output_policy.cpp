@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <system_error>
+#include <utility>
 
 #include "raytracer/shown.h"
 
@@ -45,10 +46,12 @@ bool same_file(const std::string& a, const std::string& b) {
     return identity(a, x) && identity(b, y) && same_identity(x, y);
 }
 
-// Whether standard output (stream 1) or standard error (2) is this file.
+// Whether standard input (stream 0), output (1) or error (2) is this file.
 bool standard_stream_is(int stream, const std::string& file) {
     BY_HANDLE_FILE_INFORMATION x{}, y{};
-    const HANDLE out = GetStdHandle(stream == 1 ? STD_OUTPUT_HANDLE : STD_ERROR_HANDLE);
+    const HANDLE out = GetStdHandle(stream == 0   ? STD_INPUT_HANDLE
+                                    : stream == 1 ? STD_OUTPUT_HANDLE
+                                                  : STD_ERROR_HANDLE);
     return out != INVALID_HANDLE_VALUE && out != nullptr && GetFileType(out) == FILE_TYPE_DISK &&
            GetFileInformationByHandle(out, &x) != 0 && identity(file, y) && same_identity(x, y);
 }
@@ -72,7 +75,7 @@ bool same_file(const std::string& a, const std::string& b) {
     return ::stat(a.c_str(), &x) == 0 && ::stat(b.c_str(), &y) == 0 && same_identity(x, y);
 }
 
-// Whether standard output (stream 1) or standard error (2) is this file.
+// Whether standard input (stream 0), output (1) or error (2) is this file.
 bool standard_stream_is(int stream, const std::string& file) {
     struct stat x {
     }, y{};
@@ -151,16 +154,22 @@ OutputChoice choose_output(const std::string& scene_output, const std::string* u
         return choice;
     }
     // -o /dev/stdout (or /dev/fd/1, or the file standard output goes to): written as
-    // standard output, not replaced (that would replace the link, or /dev's own entry);
-    // standard error carries the messages, not the image.
+    // standard output, not replaced (that would replace the link, or /dev's own entry).
     if (choice.named_by_user && standard_stream_is(1, choice.path)) {
         choice.destination = Destination::StandardOutput;
         return choice;
     }
-    if (choice.named_by_user && standard_stream_is(2, choice.path)) {
-        choice.refusal = shown(choice.path, kMaxShownPath) +
-                         " is standard error, where the messages go, expected another file for the image";
-        return choice;
+    // Nor is the regular file standard input or error is replaced: the one is read, the
+    // other carries the messages (a device such as /dev/null is written into as usual).
+    for (const auto& [stream, what] :
+         {std::pair<int, const char*>{0, "standard input, which is read"},
+          std::pair<int, const char*>{2, "standard error, where the messages go"}}) {
+        if (choice.named_by_user && existing == Existing::RegularFile &&
+            standard_stream_is(stream, choice.path)) {
+            choice.refusal =
+                shown(choice.path, kMaxShownPath) + " is " + what + ", expected another file for the image";
+            return choice;
+        }
     }
     if (existing == Existing::Other) {
         if (choice.named_by_user) {

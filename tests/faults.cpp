@@ -109,7 +109,8 @@ struct Options {
     int stdout_fd = -1;                   // where the child's stdout goes; -1: the capture file
     long address_space_limit = -1;        // RLIMIT_AS in bytes; -1: none
     bool ignore_hangup_and_term = false;  // started as nohup and trap '' TERM start it
-    bool close_standard_error = false;    // started with 2 closed (2>&-)
+    unsigned closed_streams = 0;          // bit k: started with descriptor k closed (2>&- is 4)
+    int stdin_fd = -1;                    // where the child's stdin comes from; -1: this process's
 };
 
 // Starts raytracer.exe with args in folder.work; stdout and stderr go to files in root.
@@ -132,7 +133,9 @@ pid_t start(const Scratch& folder, const std::vector<std::string>& args, const O
     if (chdir(work.c_str()) != 0 || out_fd < 0 || err_fd < 0) _exit(126);
     dup2(out_fd, 1);
     dup2(err_fd, 2);
-    if (options.close_standard_error) close(2);
+    if (options.stdin_fd >= 0) dup2(options.stdin_fd, 0);
+    for (int stream = 0; stream <= 2; ++stream)
+        if ((options.closed_streams >> stream & 1U) != 0) close(stream);
     if (options.file_size_limit >= 0) {
         const rlimit limit{static_cast<rlim_t>(options.file_size_limit),
                            static_cast<rlim_t>(options.file_size_limit)};
@@ -344,6 +347,15 @@ TEST(oversized_scene_files_and_lines_are_refused_within_little_memory) {
     std::string line = "SPHERE";
     for (int i = 0; i < 10000000; ++i) line += " 1";
     write_bytes(folder.work / "long_line.txt", line + "\n");
+    CHECK_EQ(run(folder, {"long_line.txt"}, options), 1);
+    CHECK(captured_stderr(folder).find("SPHERE has 10000000 fields") != std::string::npos);
+    // A stream of unknown size is cut off at the limit too, its buffer never grown past
+    // it (doubled past it, the buffer took 192 MiB in the copy).
+    Options stream_limit;
+    stream_limit.address_space_limit = 150L << 20;
+    CHECK_EQ(run(folder, {"/dev/zero"}, stream_limit), 1);
+    CHECK_EQ(captured_stderr(folder),
+             std::string("/dev/zero: error: is larger than 64 MiB, expected a scene file\n"));
     CHECK_EQ(run(folder, {"long_line.txt"}, options), 1);
     CHECK_EQ(captured_stderr(folder),
              std::string("long_line.txt:1: error: SPHERE has 10000000 fields, expected 15: SPHERE <name> "
@@ -581,7 +593,7 @@ TEST(a_long_render_shows_progress_on_a_terminal_only) {
     // Started with standard error closed, the image must not take its number and receive
     // the progress line.
     Options closed;
-    closed.close_standard_error = true;
+    closed.closed_streams = 4;
     fs::remove(folder.work / "out.ppm");
     CHECK_EQ(run(folder, {"--threads=1", "--progress", "slow.txt"}, closed), 0);
     CHECK(read_bytes(folder.work / "out.ppm") == image);
@@ -612,14 +624,33 @@ TEST(o_naming_standard_output_writes_to_it) {
                  std::string("raytracer.exe: error: -o '/proc/self/fd/2' is standard "
                              "error, where the messages go, expected another file for "
                              "the image\n"));
+        Options reading;  // standard input from a regular file: not replaced either
+        write_bytes(folder.work / "input.txt", kPrecious);
+        reading.stdin_fd = open((folder.work / "input.txt").c_str(), O_RDONLY);
+        CHECK_EQ(run(folder, {"-o", "/proc/self/fd/0", "scene.txt"}, reading), 3);
+        close(reading.stdin_fd);
+        CHECK(captured_stderr(folder).find("is standard input, which is read") != std::string::npos);
+        CHECK_EQ(read_bytes(folder.work / "input.txt"), kPrecious);
     }
+    // A device that standard input and error also are is written into as usual.
+    Options null_streams;
+    null_streams.stdin_fd = open("/dev/null", O_RDONLY);
+    null_streams.stderr_fd = open("/dev/null", O_WRONLY);
+    CHECK_EQ(run(folder, {"-o", "/dev/null", "scene.txt"}, null_streams), 0);
+    close(null_streams.stdin_fd), close(null_streams.stderr_fd);
+    // -o - with standard output closed: an error, not an image sent nowhere.
+    Options closed;
+    closed.closed_streams = 2;
+    CHECK_EQ(run(folder, {"-o", "-", "scene.txt"}, closed), 3);
+    CHECK(captured_stderr(folder).find("-o '-' could not be written in full") != std::string::npos);
 }
 
-// A signal that arrives once the image is being put in place (PendingFile::commit()) is
-// ignored: its handler would otherwise say "no image written" of an image in place. Here
-// in this process, with the program's own handlers: a SIGTERM raised after a commit
-// must return (were it not ignored, this process would end here with status 143).
-TEST(an_interrupt_after_the_image_is_in_place_is_ignored) {
+// A signal that arrives once the image is being put in place (PendingFile::commit()),
+// or once the last of it has gone to a stream, is ignored: its handler would otherwise
+// say "no image written" or "incomplete" of a complete image. Here in this process, with
+// the program's own handlers: each SIGTERM raised below must return (were it not
+// ignored, this process would end with status 143).
+TEST(an_interrupt_once_the_image_is_out_is_ignored) {
     const Scratch folder;
     rt::install_interrupt_handlers();
     rt::PendingFile file((folder.work / "image.ppm").c_str());
@@ -628,5 +659,14 @@ TEST(an_interrupt_after_the_image_is_in_place_is_ignored) {
     CHECK_EQ(file.commit(), std::string());
     CHECK_EQ(std::raise(SIGTERM), 0);
     CHECK_EQ(read_bytes(folder.work / "image.ppm").size(), std::size_t{14});
+
+    rt::release_interrupts();  // armed again, for a stream this time
+    rt::PendingFile stream("/dev/null", rt::Destination::WriteInto);
+    CHECK_EQ(stream.error(), std::string());
+    stream.expect_size(14);
+    stream.write("P6\n1 1\n255\n", 11);
+    stream.write("\0\0\0", 3);  // the last bytes are out
+    CHECK_EQ(std::raise(SIGTERM), 0);
+    CHECK_EQ(stream.commit(), std::string());
 }
 #endif  // _WIN32

@@ -42,8 +42,9 @@ public:
 
     // Why the file could not be created; empty when it was.
     const std::string& error() const { return error_; }
-    // Announces the final size, so that the file system allocates it at once: a hint,
-    // ignored where unsupported (see output_file.cpp for why it pays).
+    // Announces the final size, so that the file system allocates it at once (a hint,
+    // ignored where unsupported: see output_file.cpp for why it pays), and so that a
+    // stream knows when the whole image is out.
     void expect_size(std::uint64_t bytes);
     // Appends the bytes (only when error() is empty); a failure is reported by commit().
     void write(const void* data, std::size_t size);
@@ -59,6 +60,8 @@ private:
     void discard();
     void close_file();
     std::string write_failure() const;
+    void stream_bytes_ahead() const;
+    void stream_bytes_out(std::size_t size);
 
     std::string name_;  // as given, for messages
     Destination destination_;
@@ -68,10 +71,10 @@ private:
 #else
     int fd_ = -1;
 #endif
-    bool open_ = false;       // the file is ours to write
-    bool unnamed_ = false;    // created with O_TMPFILE: no name until commit()
-    bool replaces_ = false;   // the target existed: it is replaced, not created
-    bool streaming_ = false;  // bytes have gone to a stream (interrupts.h is told)
+    bool open_ = false;                         // the file is ours to write
+    bool unnamed_ = false;                      // created with O_TMPFILE: no name until commit()
+    bool replaces_ = false;                     // the target existed: it is replaced, not created
+    std::uint64_t expected_ = 0, written_ = 0;  // bytes: expect_size(), and to a stream so far
     unsigned keep_mode_ = 0;
     int write_error_ = 0;  // errno of the first failed write; 0: none
     std::string error_;
