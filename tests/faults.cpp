@@ -628,8 +628,11 @@ TEST(o_naming_standard_output_writes_to_it) {
         write_bytes(folder.work / "input.txt", kPrecious);
         reading.stdin_fd = open((folder.work / "input.txt").c_str(), O_RDONLY);
         CHECK_EQ(run(folder, {"-o", "/proc/self/fd/0", "scene.txt"}, reading), 3);
-        close(reading.stdin_fd);
         CHECK(captured_stderr(folder).find("is standard input, which is read") != std::string::npos);
+        write_bytes(folder.work / "to_input.txt", small_scene("input.txt"));  // a scene's OUTPUT too
+        CHECK_EQ(run(folder, {"to_input.txt"}, reading), 3);
+        CHECK(captured_stderr(folder).find("OUTPUT 'input.txt' is standard input") != std::string::npos);
+        close(reading.stdin_fd);
         CHECK_EQ(read_bytes(folder.work / "input.txt"), kPrecious);
     }
     // A device that standard input and error also are is written into as usual.
