@@ -365,14 +365,9 @@ std::string PendingFile::commit() {
         error = write_failure();
     } else if (destination_ != Destination::Replace) {
 #ifdef _WIN32
-        const bool flushed = std::fflush(file_) == 0;
-#else
-        const bool flushed = true;
+        if (std::fflush(file_) != 0) error = shown(name_, kMaxShownPath) + " could not be written in full";
 #endif
         close_file();
-        if (flushed) return {};
-        release_interrupts();
-        return shown(name_, kMaxShownPath) + " could not be written in full";
     } else if (unnamed_) {
         if (link_unnamed(error))
             error.clear();

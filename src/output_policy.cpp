@@ -159,9 +159,9 @@ OutputChoice choose_output(const std::string& scene_output, const std::string* u
         choice.destination = Destination::StandardOutput;
         return choice;
     }
-    // Nor is the regular file standard input or error is replaced, whoever names it: the
-    // one is read, the other carries the messages (a device such as /dev/null is written
-    // into as usual).
+    // Nor is a regular file that is standard input or error replaced, whoever names it:
+    // the one is read, the other carries the messages (a device such as /dev/null is
+    // written into as usual).
     for (const auto& [stream, what] :
          {std::pair<int, const char*>{0, "standard input, which is read"},
           std::pair<int, const char*>{2, "standard error, where the messages go"}}) {
