@@ -153,7 +153,8 @@ void PendingFile::open_replacement() {
 bool PendingFile::open_unnamed(const NativePath& folder) {
 #if defined(__linux__) && defined(O_TMPFILE)
     // The tests set this to exercise the named temporary of other systems here.
-    if (std::getenv("RAYTRACER_NAMED_TEMPORARY") != nullptr) return false;
+    const char* named = std::getenv("RAYTRACER_NAMED_TEMPORARY");
+    if (named != nullptr && std::strcmp(named, "1") == 0) return false;
     fd_ = ::open(folder.c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666);
     if (fd_ >= 0) {
         open_ = unnamed_ = true;

@@ -56,6 +56,10 @@ bool standard_stream_is(int stream, const std::string& file) {
            GetFileInformationByHandle(out, &x) != 0 && identity(file, y) && same_identity(x, y);
 }
 
+// A closed standard output has no handle at all here: writing it fails and says so.
+bool standard_output_closed() { return false; }
+bool is_link(const std::string&) { return false; }
+
 Existing what_is_at(const std::string& path) {
     std::error_code ec;
     const fs::file_status status = fs::status(fs::u8path(path), ec);
@@ -80,6 +84,19 @@ bool standard_stream_is(int stream, const std::string& file) {
     struct stat x {
     }, y{};
     return ::fstat(stream, &x) == 0 && ::stat(file.c_str(), &y) == 0 && same_identity(x, y);
+}
+
+// Whether standard output was closed when the program started: main() then holds its
+// number open on the root folder (keep_standard_streams_apart()), where no image can go.
+bool standard_output_closed() {
+    struct stat s {};
+    return ::fstat(1, &s) == 0 && S_ISDIR(s.st_mode);
+}
+
+// Whether the path as given is a symbolic link (/dev/stdout, /proc/self/fd/1).
+bool is_link(const std::string& path) {
+    struct stat s {};
+    return ::lstat(path.c_str(), &s) == 0 && S_ISLNK(s.st_mode);
 }
 
 Existing what_is_at(const std::string& path) {
@@ -135,8 +152,10 @@ OutputChoice choose_output(const std::string& scene_output, const std::string* u
     choice.path = choice.named_by_user ? *user_output : scene_output;
     if (choice.named_by_user && choice.path == "-") {
         choice.destination = Destination::StandardOutput;
+        if (standard_output_closed())  // raytracer.exe -o - scene.txt >&-
+            choice.refusal = "- (standard output) is closed, expected an open standard output";
         // raytracer.exe -o - scene.txt >> scene.txt
-        if (standard_stream_is(1, scene_file))
+        else if (standard_stream_is(1, scene_file))
             choice.refusal =
                 "- (standard output) is the scene file itself, expected another file for the image";
         return choice;
@@ -146,6 +165,12 @@ OutputChoice choose_output(const std::string& scene_output, const std::string* u
         if (!choice.refusal.empty()) return choice;
     }
     const Existing existing = what_is_at(choice.path);
+    if (choice.named_by_user && existing == Existing::Folder && is_link(choice.path) &&
+        standard_output_closed() && standard_stream_is(1, choice.path)) {
+        choice.refusal = shown(choice.path, kMaxShownPath) +
+                         " is standard output, which is closed, expected an open standard output";
+        return choice;
+    }
     if (existing == Existing::Nothing || existing == Existing::Folder)
         return choice;  // a folder: PendingFile says so
     if (same_file(choice.path, scene_file)) {
