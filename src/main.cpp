@@ -38,7 +38,7 @@ enum ExitStatus : int {
 
 const char* usage_text() {
     return "usage: raytracer.exe [options] <scene-file>\n"
-           "       raytracer.exe --help | --version\n"
+           "       raytracer.exe -h | --help | --version\n"
            "\n"
            "Renders a scene of ellipsoids and point lights (Phong shading, hard shadows,\n"
            "up to 3 mirror bounces) and writes it as a binary PPM (P6) to the file named\n"

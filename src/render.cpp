@@ -1,6 +1,10 @@
 // render_to(): the path a scene takes (docs/speed.md): the tree (render_tree.cpp) past
-// the flat sweep's range (takes_the_tree()), the flat sweep
-// (flat_sweep/render_flat_sweep.cpp) within it.
+// the flat sweep's range (takes_the_tree(): more than 200 ellipsoids, too many pairs of
+// ellipsoids and lights, lengths its arithmetic cannot square), the flat sweep
+// (flat_sweep/render_flat_sweep.cpp) within it. render_flat_sweep_to() may still hand the
+// scene to the tree: in float, or where its own tables say its packets would not pay
+// (PacketTracer::can_render(): fewer pixels than pairs of ellipsoids, thin ellipsoids it
+// cannot cull).
 #include "raytracer/render.h"
 
 #include <utility>

@@ -1,5 +1,5 @@
 // The nearest hits of a packet's mirrored rays found for all lanes at once
-// (Tracer::nearest_hits(), with intersect_lanes() and SphereBounds::candidate_lanes())
+// (PacketTracer::nearest_hits(), with intersect_lanes() and SphereBounds::candidate_lanes())
 // against the reference's search, one ray against every ellipsoid (BruteForce::closest()):
 // intersect_lanes() must give every lane intersect()'s roots bit for bit, in float,
 // double and long double, and nearest_hits() every lane the reference's ellipsoid, root
@@ -17,7 +17,7 @@
 #include "check.h"
 #include "random_checks.h"
 #include "raytracer/accel/intersect_lanes.h"
-#include "raytracer/flat_sweep/tracer.h"
+#include "raytracer/flat_sweep/packet_tracer.h"
 #include "raytracer/reference/brute_force.h"
 #include "raytracer/reference/ellipsoid.h"
 #include "raytracer/scene.h"
@@ -135,7 +135,7 @@ long long differing_hits(unsigned seed, long long& found, long long& inside) {
     rt::LightSpec light{};
     light.position = {0, 0, -3}, light.intensity = {1, 1, 1};
     scene.lights.push_back(light);
-    const rt::Tracer<Real> tracer(scene);
+    const rt::PacketTracer<Real> tracer(scene);
     rt::TraceScratch<Real> scratch = tracer.make_scratch();
     const rt::BruteForce<Real> reference(rt::make_ellipsoids<Real>(scene));
     long long differing = 0;

@@ -1,6 +1,7 @@
 // Lanes<Real, N>: N numbers, one per ray, with a scalar's arithmetic done lane by lane,
 // so that one piece of shading code (shading.h) runs for one ray (T = double) or for
-// the N rays of a tile (T = Lanes<double, 16>) and gives each lane the scalar's bits.
+// the lanes of a register at a time (T = Lanes<double, kRegisterLanes>, a tile's or a
+// packet's) and gives each lane the scalar's bits.
 //
 // Each operator is a vector instruction per 32 bytes of lanes (4 doubles in an AVX
 // register; detail::NativeVector below), or a loop over the lanes that the compiler

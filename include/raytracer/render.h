@@ -1,7 +1,8 @@
 // Renders a scene to an image: one eye ray per pixel through the pixel's top-left
-// corner on the near plane (SPEC section 3), traced in the scalar type Real. Each
-// function is instantiated for float, double and long double (src/render.cpp); threads
-// = 0 means all cores, and the image is byte-identical for any number of threads.
+// corner on the near plane (SPEC section 3), traced in the scalar type Real: double in
+// raytracer.exe, float and long double too for the tests (src/render.cpp,
+// src/render_reference.cpp); threads = 0 means all cores, and the image is
+// byte-identical for any number of threads.
 #pragma once
 
 #include "raytracer/image.h"
@@ -10,10 +11,10 @@
 
 namespace rt {
 
-// The fast path, raytracer.exe's: the flat sweep for a handful of ellipsoids, the tree
-// past them (docs/speed.md). It hands the image's rows to sink as they are finished (so
-// that writing a file overlaps the render) and never holds the whole image: every row
-// reaches sink, in order, before render_to() returns.
+// The fast path, raytracer.exe's: the flat sweep up to 200 ellipsoids, the tree past
+// them (src/render.cpp says exactly where; docs/speed.md). It hands the image's rows to sink as they are
+// finished (so that writing a file overlaps the render) and never holds the whole image: every row reaches
+// sink, in order, before render_to() returns.
 template <typename Real>
 void render_to(const Scene& scene, RowSink& sink, unsigned threads = 0);
 // The same, the image returned whole.

@@ -10,10 +10,9 @@
 #include <vector>
 
 #include "raytracer/flat_sweep/eye_rays.h"
-#include "raytracer/flat_sweep/tracer.h"
+#include "raytracer/flat_sweep/packet_tracer.h"
 #include "raytracer/helper_pool.h"
 #include "raytracer/own_cache_lines.h"
-#include "raytracer/render.h"
 #include "raytracer/render_tree.h"
 #include "raytracer/row_ring.h"
 
@@ -56,7 +55,7 @@ struct Packet {
         dx[count] = x, dy[count] = y, dz[count] = z, t[count] = root, inside[count] = in, out[count] = pixel;
         ++count;
     }
-    void shade(const Tracer<Real>& tracer, std::uint32_t ellipsoid, TraceScratch<Real>& scratch) {
+    void shade(const PacketTracer<Real>& tracer, std::uint32_t ellipsoid, TraceScratch<Real>& scratch) {
         if (count == 0) return;
         tracer.eye_hit_pixels(ellipsoid, count, dx, dy, dz, t, inside, scratch, out);
         count = 0;
@@ -83,7 +82,7 @@ struct alignas(OwnCacheLines<char>::kLine) Workspace {
     OwnLinesVector<Packet<Real>> packets;   // per ellipsoid
     OwnLinesVector<std::uint32_t> seen;     // the ellipsoids some row of the band may see (repeats allowed)
 
-    Workspace(const Tracer<Real>& tracer, std::size_t ellipsoids, int columns)
+    Workspace(const PacketTracer<Real>& tracer, std::size_t ellipsoids, int columns)
         : scratch(tracer.make_scratch()), hits(kTileRows, EyeRowHits<Real>(columns)), packets(ellipsoids) {
         in_row.reserve(ellipsoids);
         seen.reserve(ellipsoids * kTileRows);
@@ -91,7 +90,7 @@ struct alignas(OwnCacheLines<char>::kLine) Workspace {
 };
 
 // By default the other cores are called in only when the rest of the image would take
-// the calling thread longer than this alone (see render_flat_sweep_to()). Calling a helper costs this
+// the calling thread longer than this alone (see sweep_rows()). Calling a helper costs this
 // thread about 0.08 ms; where it starts on an idle core at once (helper_pool.h) it
 // draws rows about 0.1 ms later, where it waits for the scheduler to move it, 3 ms.
 // The earlier the call, the more of the image the helper shares: 100 us rather than
@@ -104,7 +103,7 @@ std::chrono::microseconds worth_helping() {
 
 // The camera's terms per ellipsoid, for intersecting eye rays many columns at a time.
 template <typename Real>
-EyeRays<Real> make_eye_rays(const Tracer<Real>& tracer, const std::vector<PixelRect>& rects,
+EyeRays<Real> make_eye_rays(const PacketTracer<Real>& tracer, const std::vector<PixelRect>& rects,
                             const std::vector<Real>& column_x) {
     std::vector<Ellipsoid<Real>> ellipsoids;
     std::vector<MappedOrigin<Real>> eye_origins;
@@ -130,15 +129,14 @@ EyeRays<Real> make_eye_rays(const Tracer<Real>& tracer, const std::vector<PixelR
 template <typename Real>
 class FlatSweep {
 public:
-    FlatSweep(const Scene& scene, Tracer<Real>&& tracer, RowSink& sink, unsigned most_threads)
+    FlatSweep(const Scene& scene, PacketTracer<Real>&& tracer, RowSink& sink, unsigned most_threads)
         : scene_(scene),
           tracer_(std::move(tracer)),
-          rects_(tracer_.screen_rects(scene)),
           spans_(tracer_.row_spans(scene)),
           background_row_(static_cast<std::size_t>(scene.columns) * 3),
           ring_(sink, scene.rows, background_row_.size(), kTileRows, most_threads),
           column_x_(column_xs<Real>(scene)),
-          eye_rays_(make_eye_rays(tracer_, rects_, column_x_)),
+          eye_rays_(make_eye_rays(tracer_, tracer_.screen_rects(), column_x_)),
           near_z_(-static_cast<Real>(scene.near_plane)) {
         // Each row starts as a copy of a background row, written by the thread that
         // renders the row, and only traced pixels are written over: most pixels of the
@@ -149,7 +147,9 @@ public:
         for (std::size_t i = 0; i < background_row_.size(); ++i) background_row_[i] = background[i % 3];
     }
 
-    Workspace<Real> workspace() const { return Workspace<Real>(tracer_, rects_.size(), scene_.columns); }
+    Workspace<Real> workspace() const {
+        return Workspace<Real>(tracer_, tracer_.screen_rects().size(), scene_.columns);
+    }
 
     // Renders bands until none is left; after_row(r) after each, r its last row.
     template <typename AfterRow>
@@ -189,9 +189,10 @@ private:
         in_row.clear();
         int lo = scene_.columns, hi = -1;  // the columns some ellipsoid may cover
         const double row_y_double = pixel_y(scene_.top, scene_.bottom, r, scene_.rows);
-        for (std::uint32_t i = 0; i < rects_.size(); ++i) {
-            Span span{i, rects_[i].first_column, rects_[i].last_column};
-            if (rects_[i].first_row <= r && r <= rects_[i].last_row &&
+        const std::vector<PixelRect>& rects = tracer_.screen_rects();
+        for (std::uint32_t i = 0; i < rects.size(); ++i) {
+            Span span{i, rects[i].first_column, rects[i].last_column};
+            if (rects[i].first_row <= r && r <= rects[i].last_row &&
                 spans_.narrow(i, row_y_double, span.first, span.last)) {
                 in_row.push_back(span);
                 lo = std::min(lo, span.first);
@@ -211,7 +212,7 @@ private:
     }
 
     // The band's hit pixels, shaded in packets of pixels that see the same ellipsoid
-    // (Tracer::eye_hit_pixels(), vector lanes), gathered tile by tile.
+    // (PacketTracer::eye_hit_pixels(), vector lanes), gathered tile by tile.
     void shade(const Band& band, Workspace<Real>& work) {
         for (int c0 = band.band_lo; c0 <= band.band_hi; c0 += kTileColumns)
             for (int r = band.first_row; r < band.end_row; ++r) {
@@ -238,9 +239,8 @@ private:
     }
 
     const Scene& scene_;
-    const Tracer<Real> tracer_;
-    const std::vector<PixelRect> rects_;
-    const RowSpans<typename Tracer<Real>::C> spans_;  // per ellipsoid, the columns of a row
+    const PacketTracer<Real> tracer_;
+    const RowSpans<typename PacketTracer<Real>::C> spans_;  // per ellipsoid, the columns of a row
     std::vector<std::uint8_t> background_row_;
     // Rows go to the sink from a ring of rows as they are finished (row_ring.h), written
     // by whichever thread completes a block of them while no block is being written.
@@ -295,7 +295,7 @@ void sweep_rows(FlatSweep<Real>& sweep, const Scene& scene, unsigned threads, un
 template <typename Real>
 void render_flat_sweep_to(const Scene& scene, RowSink& sink, unsigned threads) {
     if constexpr (kFlatSweepPrecision<Real>) {
-        Tracer<Real> tracer(scene);
+        PacketTracer<Real> tracer(scene);
         if (tracer.can_render()) {
             const unsigned most_threads = threads_asked(threads);
             FlatSweep<Real> sweep(scene, std::move(tracer), sink, most_threads);

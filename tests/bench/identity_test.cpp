@@ -18,8 +18,8 @@
 
 #include "check.h"
 #include "image_diff.h"
+#include "raytracer/flat_sweep/packet_tracer.h"
 #include "raytracer/flat_sweep/render_flat_sweep.h"
-#include "raytracer/flat_sweep/tracer.h"
 #include "raytracer/parser.h"
 #include "raytracer/render.h"
 #include "scale_scenes.h"
@@ -91,7 +91,7 @@ TEST(scenes_of_many_ellipsoids_match_the_plain_tracer) {
         // As many pixels as pairs of ellipsoids, the least the flat sweep takes.
         scene.columns = scene.rows = static_cast<int>(scene.spheres.size());
         CHECK(!rt::takes_the_tree(scene));
-        CHECK(rt::Tracer<double>(scene).can_render());
+        CHECK(rt::PacketTracer<double>(scene).can_render());
         CHECK(same_as_plain<double>(name, scene));
         CHECK(same_as_plain<long double>(name, scene));
     }
@@ -100,18 +100,18 @@ TEST(scenes_of_many_ellipsoids_match_the_plain_tracer) {
 // A disc so thin that rounding could reach the bounding spheres' gap: the flat sweep
 // renders it without its culling tables among at most kUnculledEllipsoids, and hands
 // more to the tree. An image of fewer pixels than pairs of ellipsoids: the flat sweep
-// hands it to the tree (Tracer::can_render()).
+// hands it to the tree (PacketTracer::can_render()).
 TEST(scenes_past_the_flat_sweeps_tables_match_the_plain_tracer) {
     rt::Scene thin = random_scene(3);
     thin.spheres[0].scale.z = 1e-9;
     rt::Scene thin_few = thin;
-    thin_few.spheres.resize(rt::Tracer<double>::kUnculledEllipsoids);
+    thin_few.spheres.resize(rt::PacketTracer<double>::kUnculledEllipsoids);
     rt::Scene tiny = scale::random_ellipsoids(100, 7);
     tiny.columns = 9, tiny.rows = 9;
-    CHECK(thin.spheres.size() > rt::Tracer<double>::kUnculledEllipsoids);
-    CHECK(rt::Tracer<double>(thin_few).can_render());
-    CHECK(!rt::Tracer<double>(thin).can_render());
-    CHECK(!rt::Tracer<double>(tiny).can_render());
+    CHECK(thin.spheres.size() > rt::PacketTracer<double>::kUnculledEllipsoids);
+    CHECK(rt::PacketTracer<double>(thin_few).can_render());
+    CHECK(!rt::PacketTracer<double>(thin).can_render());
+    CHECK(!rt::PacketTracer<double>(tiny).can_render());
     for (const rt::Scene& scene : {thin_few, thin, tiny}) {
         CHECK(!rt::takes_the_tree(scene));
         CHECK(same_as_plain<double>("past the tables", scene));

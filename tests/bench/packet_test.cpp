@@ -1,9 +1,9 @@
-// Tracer::eye_hit_pixels() shades up to kPacket eye-ray hits at once with vector
+// PacketTracer::eye_hit_pixels() shades up to kPacket eye-ray hits at once with vector
 // instructions (hit_packet.h); each pixel's colour must equal, bit for bit, the
 // reference's for that pixel alone (Whitted::eye_ray_colour(), whitted.h), and its bytes
 // to_byte() of it, in double and long double (the flat sweep's precisions): for packets
 // of neighbouring pixels, of pixels scattered over a row, and partial packets. Scenes the
-// flat sweep hands to the tree (Tracer::can_render()) are left out.
+// flat sweep hands to the tree (PacketTracer::can_render()) are left out.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "check.h"
-#include "raytracer/flat_sweep/tracer.h"
+#include "raytracer/flat_sweep/packet_tracer.h"
 #include "raytracer/image.h"
 #include "raytracer/reference/brute_force.h"
 #include "raytracer/reference/whitted.h"
@@ -43,7 +43,7 @@ struct EyeHit {
 template <typename Real>
 long long differing_bytes(const rt::Scene& scene, int packet, int stride) {
     using V = rt::Vec3<Real>;
-    const rt::Tracer<Real> tracer(scene);
+    const rt::PacketTracer<Real> tracer(scene);
     rt::TraceScratch<Real> scratch = tracer.make_scratch();
     const rt::Whitted<Real, rt::BruteForce<Real>> reference(
         scene, rt::BruteForce<Real>(rt::make_ellipsoids<Real>(scene)));
@@ -106,7 +106,7 @@ int left_out = 0;
 
 template <typename Real>
 bool packets_match(const std::string& name, const rt::Scene& scene) {
-    if (!rt::Tracer<Real>(scene).can_render()) {
+    if (!rt::PacketTracer<Real>(scene).can_render()) {
         ++left_out;
         return true;
     }

@@ -11,20 +11,21 @@
 // Exactness: a query returns what brute_force.h returns, bit for bit. Each ellipsoid's box is its
 // axis-aligned bounding box grown by at least kCullingGap of each scale (exact_culling.h, slab_rays.h), a
 // gap of 1e-3 in the unit sphere's space; a root that intersect() reports lies within a few ulps of |o'| of
-// the unit sphere (the rounding of the mapped origin, plus the tangency allowance, ellipsoid.h), so its point
-// lies deep inside the box, and the slab test's own rounding (a few ulps of the box's distance) cannot move
-// it out. A ray that runs in a slab's plane, where the slab test's 0 * inf is NaN, cannot reach a box's
-// inside at all. Both hold only while the ray's origin is within the reach its box's gap holds (BoxGaps,
-// slab_rays.h: |o'| <= 1e9 in double for the gap of 1e-3, the roots' rounding 2e-5 there; an ellipsoid thin
-// beside its scene is grown more, so that its box culls rays from anywhere in it): a child is culled only for
-// a ray from within the guard distance of every ellipsoid under it, else visited unculled. A child whose box
-// holds the ray's origin is never culled either: from a point on the surface (|o'| = 1 within rounding) along
-// its tangent plane, o'.d' is a rounding residue, and where intersect() clamps the discriminant to zero (the
-// tangency allowance) its second root c/q is c / |o'.d'|, anywhere along the ray, far outside the box (a
-// shadow ray towards a light 2000 radii away leaves the box before t = 0.001 and is still "blocked" at t ~
-// 0.5). From outside the box, |o'.d'| / |d'| >= sqrt(1.001^2 - 1) ~ 0.045 bounds that root's distance from
-// the tangent point to ~90 eps (1 + |o'|), deep inside the gap. The ellipsoids of a leaf are always tried
-// with the exact intersect(). Ties between equal roots go to the lower index (NearestHit::replaced_by()).
+// the unit sphere (the rounding of the mapped origin, plus the tangency allowance, unit_sphere_roots.h), so
+// its point lies deep inside the box, and the slab test's own rounding (a few ulps of the box's distance)
+// cannot move it out. A ray that runs in a slab's plane, where the slab test's 0 * inf is NaN, cannot reach a
+// box's inside at all. Both hold only while the ray's origin is within the reach its box's gap holds
+// (BoxGaps, slab_rays.h: |o'| <= 1e9 in double for the gap of 1e-3, the roots' rounding 2e-5 there; an
+// ellipsoid thin beside its scene is grown more, so that its box culls rays from anywhere in it): a child is
+// culled only for a ray from within the guard distance of every ellipsoid under it, else visited unculled. A
+// child whose box holds the ray's origin is never culled either: from a point on the surface (|o'| = 1 within
+// rounding) along its tangent plane, o'.d' is a rounding residue, and where intersect() clamps the
+// discriminant to zero (the tangency allowance) its second root c/q is c / |o'.d'|, anywhere along the ray,
+// far outside the box (a shadow ray towards a light 2000 radii away leaves the box before t = 0.001 and is
+// still "blocked" at t ~ 0.5). From outside the box, |o'.d'| / |d'| >= sqrt(1.001^2 - 1) ~ 0.045 bounds that
+// root's distance from the tangent point to ~90 eps (1 + |o'|), deep inside the gap. The ellipsoids of a leaf
+// are always tried with the exact intersect(). Ties between equal roots go to the lower index
+// (NearestHit::replaced_by()).
 //
 // Memory: the tree and the ellipsoids in leaf order; a query uses a fixed stack, the same for any scene.
 #pragma once
@@ -42,7 +43,6 @@
 #include "raytracer/accel/shadow_prefilter.h"
 #include "raytracer/accel/slab_rays.h"
 #include "raytracer/bit_scan.h"
-#include "raytracer/compiler.h"
 #include "raytracer/large_pages.h"
 #include "raytracer/reference/ellipsoid.h"
 #include "raytracer/reference/spec_rules.h"

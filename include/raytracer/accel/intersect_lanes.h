@@ -1,6 +1,6 @@
 // intersect() (ellipsoid.h) for N rays against one ellipsoid at once, ray k in lane k:
 // the rays of a bundle in the tree's leaves (slab_rays.h), and the flat sweep's mirrored
-// rays of a packet of hits (Tracer::reflections()).
+// rays of a packet of hits (PacketTracer::reflections()).
 //
 // WHY: one ray at a time, intersect() is four divisions and a square root with branches
 // in between (in the mirror room of tests/bench/heavy.txt, where every hit reflects, a

@@ -15,7 +15,6 @@
 // (an ellipsoid that reaches the camera's plane or lies far away) no row is ruled out.
 #pragma once
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
 

@@ -69,9 +69,9 @@ public:
         return within;
     }
 
-    // The same in two parts, for callers that have computed unit_radius2(point, i)
-    // themselves (prefilter_shadow_lanes()'s o2, the same operations):
-    // contains_segment() = light_within(light_index, i) && point_within(o2).
+    // contains_segment() in two parts: light_within(light_index, i) &&
+    // point_within(unit_radius2(point, i)); the packets ask the first per light and the
+    // second once per packet (points_within()).
     bool light_within(std::size_t light_index, std::size_t i) const {
         return !light_inside_.empty() && light_inside_[light_index * n_ + i];
     }

@@ -7,12 +7,12 @@
 // WHY: neighbouring pixels mostly see the same ellipsoid, and all of the shading
 // arithmetic but the shadow rays is then the same chain of operations per pixel, run
 // with the pixels as the lanes of vector instructions. A register at a time keeps each
-// chain in registers: shading.h over Lanes of all 16 lanes at once (as the tree's tiles
-// run it) spills them, and measured 15-20% slower here (the course scenes and the heavy
+// chain in registers (as the tree's tiles do too): shading.h over Lanes of all 16 lanes
+// at once spills them, and measured 15-20% slower here (the course scenes and the heavy
 // scene, one thread).
 //
-// Shadow rays are Tracer::shadow_lanes()'s, and what each mirrored ray hits is
-// Tracer::nearest_hits()'s (packet_shading.h).
+// Shadow rays are PacketTracer::shadow_lanes()'s, and what each mirrored ray hits is
+// PacketTracer::nearest_hits()'s (packet_shading.h).
 #pragma once
 
 #include <cstdint>

@@ -1,4 +1,4 @@
-// The flat sweep's packets, members of Tracer (tracer.h) defined here: the colours of up
+// The flat sweep's packets, members of PacketTracer (packet_tracer.h) defined here: the colours of up
 // to kPacket hits on one ellipsoid (hit_colours()), their shadow rays to one light tested
 // together (shadow_lanes()), and their mirrored rays' nearest hits found together
 // (nearest_hits()) and shaded in packets again (reflections()). Each lane gets the
@@ -8,14 +8,13 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
-#include <type_traits>
 
 #include "raytracer/accel/intersect_lanes.h"
 #include "raytracer/accel/shadow_prefilter.h"
 #include "raytracer/bit_scan.h"
 #include "raytracer/compiler.h"
 #include "raytracer/flat_sweep/hit_packet.h"
-#include "raytracer/flat_sweep/tracer.h"
+#include "raytracer/flat_sweep/packet_tracer.h"
 #include "raytracer/lanes.h"
 
 namespace rt {
@@ -32,9 +31,9 @@ namespace rt {
 // taken in increasing order by the reference's rule: the same hit, t and flag.
 template <typename Real>
 template <int N>
-void Tracer<Real>::nearest_hits(const Real* ox, const Real* oy, const Real* oz, const Real* dx,
-                                const Real* dy, const Real* dz, Real min_t, TraceScratch<Real>& scratch,
-                                std::uint32_t* index, Real* t, bool* inside) const {
+void PacketTracer<Real>::nearest_hits(const Real* ox, const Real* oy, const Real* oz, const Real* dx,
+                                      const Real* dy, const Real* dz, Real min_t, TraceScratch<Real>& scratch,
+                                      std::uint32_t* index, Real* t, bool* inside) const {
     std::uint32_t* lanes = scratch.lanes.data();
     // The ellipsoids that some ray may hit, in increasing order.
     const std::uint32_t* some_ray = scratch.candidates.data();
@@ -74,15 +73,15 @@ void Tracer<Real>::nearest_hits(const Real* ox, const Real* oy, const Real* oz, 
 // ellipsoid for Enclosures, once for all lights (the mirror room's points are on it, so
 // within it for every light it encloses).
 template <typename Real>
-struct Tracer<Real>::PacketPlace {
+struct PacketTracer<Real>::PacketPlace {
     typename LightCones<C>::Ball ball;
     std::uint64_t self_within = 0;
 };
 
 template <typename Real>
 template <int N>
-typename Tracer<Real>::PacketPlace Tracer<Real>::packet_place(const HitPacket<Real, N>& p,
-                                                              std::uint32_t i) const {
+typename PacketTracer<Real>::PacketPlace PacketTracer<Real>::packet_place(const HitPacket<Real, N>& p,
+                                                                          std::uint32_t i) const {
     PacketPlace place;
     place.ball = LightCones<C>::template ball<N>(p.px, p.py, p.pz);
     if (enclosures_.encloses_a_light(i))
@@ -96,9 +95,9 @@ typename Tracer<Real>::PacketPlace Tracer<Real>::packet_place(const HitPacket<Re
 // of the scene's ellipsoid sets (set_words()).
 template <typename Real>
 template <int N, typename Set>
-void Tracer<Real>::shadow_batch(const HitPacket<Real, N>& p, const PacketPlace& place, std::uint32_t i,
-                                std::size_t first, std::size_t size, LightLanes<Real, N>* batch,
-                                bool* lit_any, TraceScratch<Real>& scratch) const {
+void PacketTracer<Real>::shadow_batch(const HitPacket<Real, N>& p, const PacketPlace& place, std::uint32_t i,
+                                      std::size_t first, std::size_t size, LightLanes<Real, N>* batch,
+                                      bool* lit_any, TraceScratch<Real>& scratch) const {
     // Per light, the ellipsoids that some segment from the packet's ball to it may meet
     // (independent chains, which overlap), then the lanes each of them shadows.
     const Set every = Set::first(ellipsoids_.size());
@@ -123,10 +122,10 @@ void Tracer<Real>::shadow_batch(const HitPacket<Real, N>& p, const PacketPlace& 
 // ellipsoid they hit.
 template <typename Real>
 template <int N>
-void Tracer<Real>::hit_colours(std::uint32_t i, int count, const Real* ox, const Real* oy, const Real* oz,
-                               const Real* dx, const Real* dy, const Real* dz, const Real* t,
-                               const bool* inside, int reflections_left, TraceScratch<Real>& scratch,
-                               V* colours) const {
+void PacketTracer<Real>::hit_colours(std::uint32_t i, int count, const Real* ox, const Real* oy,
+                                     const Real* oz, const Real* dx, const Real* dy, const Real* dz,
+                                     const Real* t, const bool* inside, int reflections_left,
+                                     TraceScratch<Real>& scratch, V* colours) const {
     const Surface& surface = surfaces_[i];
     const Ellipsoid<Real>& e = ellipsoids_[i];
     const bool reflects = e.kr > 0 && reflections_left > 0;
@@ -186,9 +185,9 @@ void Tracer<Real>::hit_colours(std::uint32_t i, int count, const Real* ox, const
 // self_within: the lanes whose points Enclosures::points_within() ellipsoid self.
 template <typename Real>
 template <int N, typename Set>
-std::uint64_t Tracer<Real>::shadow_lanes(const HitPacket<Real, N>& p, LightLanes<Real, N>& l,
-                                         std::uint32_t self, std::size_t li, Set may_block,
-                                         std::uint64_t self_within, TraceScratch<Real>& scratch) const {
+std::uint64_t PacketTracer<Real>::shadow_lanes(const HitPacket<Real, N>& p, LightLanes<Real, N>& l,
+                                               std::uint32_t self, std::size_t li, Set may_block,
+                                               std::uint64_t self_within, TraceScratch<Real>& scratch) const {
     using Bits = std::uint64_t;  // bit k for lane k
     // Selects of these constants rather than shifts by k: GCC then vectorises the
     // loops below.
@@ -197,8 +196,8 @@ std::uint64_t Tracer<Real>::shadow_lanes(const HitPacket<Real, N>& p, LightLanes
     // they are never waiting.
     const Bits front = l.front & ((Bits(1) << p.count) - 1);
     // The own ellipsoid cannot block the lanes where it encloses the light and the
-    // point (contains_segments(), computed once), nor those where self_clear holds
-    // (computed only where that matters).
+    // point (self_within, computed once a packet: packet_place()), nor those where
+    // self_clear holds (computed only where that matters).
     Bits self_free = enclosures_.light_within(li, self) ? self_within : 0;
     if (may_block.contains(self) && (front & ~self_free) != 0) self_free |= p.self_clear(l);
     if ((front & ~self_free) == 0) may_block.erase(self);
@@ -236,7 +235,7 @@ std::uint64_t Tracer<Real>::shadow_lanes(const HitPacket<Real, N>& p, LightLanes
         Bits blocked = answer.blocked & lanes, unsure = answer.unsure & lanes;
         for (; unsure != 0; unsure &= unsure - 1) {  // rare: intersect() decides
             const int k = lowest_bit(unsure);
-            if (blocks(ellipsoids_[j], V{p.px[k], p.py[k], p.pz[k]}, V{l.tx[k], l.ty[k], l.tz[k]}))
+            if (blocks_segment(ellipsoids_[j], V{p.px[k], p.py[k], p.pz[k]}, V{l.tx[k], l.ty[k], l.tz[k]}))
                 blocked |= kLane[k];
         }
         if (blocked == 0) return;
@@ -259,8 +258,8 @@ std::uint64_t Tracer<Real>::shadow_lanes(const HitPacket<Real, N>& p, LightLanes
 // The mirrored rays of a packet (Whitted::shade()); adds seen * kr to each lane's colour.
 template <typename Real>
 template <int N>
-void Tracer<Real>::reflections(HitPacket<Real, N>& p, Real kr, int reflections_left,
-                               TraceScratch<Real>& scratch) const {
+void PacketTracer<Real>::reflections(HitPacket<Real, N>& p, Real kr, int reflections_left,
+                                     TraceScratch<Real>& scratch) const {
     Real mx[N], my[N], mz[N];
     p.mirror(mx, my, mz);
     std::uint32_t next[N];

@@ -1,7 +1,7 @@
 // The flat sweep: every ellipsoid culled by its bounding sphere, eye rays by row, hits
-// shaded in vector packets (tracer.h and the headers beside it). It renders the bytes
-// of the reference path (whitted.h) faster for a handful of ellipsoids, and render_to()
-// takes it within the range below; the tree (bvh.h) takes every other scene.
+// shaded in vector packets (packet_tracer.h and the headers beside it). It renders the bytes
+// of the reference path (whitted.h) faster up to 200 ellipsoids, and render_to() takes
+// it within the range below; the tree (bvh.h) takes every other scene.
 #pragma once
 
 #include <cstddef>
@@ -22,7 +22,7 @@ namespace rt {
 // tree took 1.02 / 0.95 / 0.88 / 0.79 times the flat sweep's time on random 200 / 250 / 300 / 384, and
 // 0.95 / 0.86 / 0.77 / 0.67 times on the first 200 / 250 / 300 / 384 of sphereflake 3).
 inline constexpr std::size_t kFlatSweepEllipsoids = 200;
-// and while ellipsoids x lights stay below this: the flat sweep keeps a light cone per
+// and while ellipsoids x lights stay at most this: the flat sweep keeps a light cone per
 // ellipsoid and light (light_cones.h), the tree nothing per pair. Within it,
 // 200 random ellipsoids with 240 / 320 lights took 203 / 270 ms flat against 237 / 309 ms
 // in the tree, 128 with 500 227 against 320 ms (400x400, whole process, medians of 5).
@@ -52,8 +52,8 @@ template <typename Real>
 inline constexpr bool kFlatSweepPrecision = std::is_same_v<AtLeastDouble<Real>, Real>;
 
 // Instantiated for float, double and long double; threads = 0: see render_to(). A
-// precision the flat sweep does not render in, or a scene whose shadow rays its packets
-// cannot test exactly (Tracer::can_render()), goes to the tree from here.
+// precision the flat sweep does not render in, or a scene where its packets would not
+// pay (PacketTracer::can_render()), goes to the tree from here.
 template <typename Real>
 void render_flat_sweep_to(const Scene& scene, RowSink& sink, unsigned threads);
 

@@ -56,7 +56,8 @@ struct Roots {
 // (the tangency rule) and the roots.
 //
 // intersect() is mapped_origin() and intersect_mapped() in one: rays from one origin
-// (every eye ray) share o' and c, which the caller may compute once with mapped_origin().
+// share o' and c, which a caller may compute once with mapped_origin() (the flat
+// sweep's eye rays, eye_rays.h, and the tests of them).
 template <typename Real>
 struct MappedOrigin {
     Vec3<Real> o;  // (origin - C) / s

@@ -1,7 +1,7 @@
 // The shading arithmetic of SPEC section 5, written once for one ray (T = Real: the
-// reference, whitted.h) and for the lanes of a tile (T = Lanes<Real, N>, lanes.h:
-// whitted_tiles.h): a hit's point, normal and direction to the viewer, a light's ray,
-// and the diffuse and specular terms of a light that reaches the point. The same
+// reference, whitted.h) and for lanes (T = Lanes<Real, N>, lanes.h: the tree's tiles,
+// whitted_tiles.h, and the flat sweep's packets, hit_packet.h): a hit's point, normal and direction to the
+// viewer, a light's ray, and the diffuse and specular terms of a light that reaches the point. The same
 // operations in the same order, so a lane's colour is the scalar's, bit for bit.
 //
 // The terms are multiplied in the order the handout writes them: Ka*Ia*O, Kd*Ip*(N.L)*O

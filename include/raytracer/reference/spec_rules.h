@@ -1,7 +1,7 @@
 // The rules of SPEC sections 3-5 that decide, per ray and ellipsoid, what a root means:
 // which root an eye or reflected ray sees, and whether a shadow ray is blocked, with
 // the constants the course keys fix. Every path of the renderer (the flat sweep of
-// tracer.h and its vector lanes, the geometry queries of brute_force.h and bvh.h)
+// packet_tracer.h and its vector lanes, the geometry queries of brute_force.h and bvh.h)
 // decides with these, so that all agree bit for bit.
 #pragma once
 

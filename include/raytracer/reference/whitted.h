@@ -58,7 +58,8 @@ public:
 
     // A thread's working memory: per light, the ellipsoid its last shadow ray was blocked
     // by, which the geometry tries first for the next (its occluded()): neighbouring pixels
-    // are mostly blocked by the same one. It never changes an answer.
+    // are mostly blocked by the same one. It never changes an answer. Each geometry numbers
+    // it its own way (BruteForce by scene index, Bvh by position in leaf order).
     struct Scratch {
         std::vector<std::uint32_t> blockers;
     };
@@ -103,7 +104,7 @@ public:
         return colour;
     }
 
-    // For the drivers that shade many hits at once (whitted_tiles.h, the flat sweep).
+    // For the tree's tiles, which shade many hits at once (whitted_tiles.h).
     const Material& material(std::uint32_t i) const { return materials_[i]; }
     std::size_t ellipsoid_count() const { return materials_.size(); }
     std::size_t light_count() const { return lights_.size(); }

@@ -6,11 +6,9 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
-#include <type_traits>
 #include <utility>
 #include <vector>
 
-#include "raytracer/compiler.h"
 #include "raytracer/flat_sweep/bounding_sphere.h"
 #include "raytracer/flat_sweep/ellipsoid_set.h"
 #include "raytracer/flat_sweep/enclosures.h"
@@ -29,7 +27,7 @@
 
 namespace rt {
 
-// Per-thread working memory of a Tracer, so that no ray allocates: the candidate lists
+// Per-thread working memory of a PacketTracer, so that no ray allocates: the candidate lists
 // of the bounding-sphere culling and, per light, the ellipsoid that last blocked it; on
 // cache lines of its own (own_cache_lines.h).
 template <typename Real>
@@ -41,7 +39,7 @@ struct TraceScratch {
 };
 
 template <typename Real>
-class Tracer {
+class PacketTracer {
 public:
     using V = Vec3<Real>;
     using C = typename SphereBounds<Real>::C;  // the precision of the culling arithmetic
@@ -49,7 +47,7 @@ public:
 
     // The reference that the tests hold this tracer's images to, byte for byte, is
     // whitted.h with brute_force.h (render_reference()).
-    explicit Tracer(const Scene& scene)
+    explicit PacketTracer(const Scene& scene)
         : ellipsoids_(make_ellipsoids<Real>(scene)), background_(V::from(scene.background)) {
         const V ambient = V::from(scene.ambient);
         lights_.reserve(scene.lights.size());
@@ -83,8 +81,8 @@ public:
         // lane, with the prefilter and intersect(), exact at any distance but slow past
         // a few ellipsoids, where the tree, whose boxes grow for thin ellipsoids, is far
         // faster (kUnculledEllipsoids).
-        const std::vector<PixelRect> rects = screen_rects(scene);
-        const bool any_seen = std::any_of(rects.begin(), rects.end(), [](const PixelRect& r) {
+        screen_rects_ = screen_bounds(scene, bounds_.spheres(), culls_eye_rays());
+        const bool any_seen = std::any_of(screen_rects_.begin(), screen_rects_.end(), [](const PixelRect& r) {
             return r.first_column <= r.last_column && r.first_row <= r.last_row;
         });
         const double pixels = double(scene.columns) * double(scene.rows);
@@ -121,12 +119,7 @@ public:
     }
 
     // Per ellipsoid, the pixels outside which no eye ray meets it (screen_bounds.h).
-    std::vector<PixelRect> screen_rects(const Scene& scene) const {
-        std::vector<bool> usable;
-        for (std::size_t i = 0; i < bounds_.size(); ++i)
-            usable.push_back(bounds_.guards({0, 0, 0}, {0, 0, 0}, i));
-        return screen_bounds(scene, bounds_.spheres(), usable);
-    }
+    const std::vector<PixelRect>& screen_rects() const { return screen_rects_; }
 
     // Up to kPacket eye-ray hits on ellipsoid i at once: pixel k < count looks along
     // (dx[k], dy[k], dz[k]) and meets the ellipsoid first at t[k] (inside[k]: the far
@@ -169,10 +162,7 @@ public:
 
     // Per ellipsoid, the columns of a row that may see it (screen_bounds.h).
     RowSpans<C> row_spans(const Scene& scene) const {
-        std::vector<bool> usable;
-        for (std::size_t i = 0; i < ellipsoids_.size(); ++i)
-            usable.push_back(bounds_.guards({0, 0, 0}, {0, 0, 0}, i));
-        return RowSpans<C>(scene, ellipsoids_, std::move(usable));
+        return RowSpans<C>(scene, ellipsoids_, culls_eye_rays());
     }
 
     const V& background() const { return background_; }
@@ -201,10 +191,6 @@ private:
         return bounds_.guards(lo, hi);
     }
 
-    static bool blocks(const Ellipsoid<Real>& e, const V& point, const V& to_light) {
-        return blocks_segment(e, point, to_light);
-    }
-
     // The packets, in packet_shading.h: the colours of up to N hits on one ellipsoid,
     // where their points lie, their shadow rays to one light, their mirrored rays.
     template <int N>
@@ -227,6 +213,14 @@ private:
     template <int N>
     void reflections(HitPacket<Real, N>& p, Real kr, int reflections_left, TraceScratch<Real>& scratch) const;
 
+    // Per ellipsoid, whether its bounding sphere may cull rays from the camera.
+    std::vector<bool> culls_eye_rays() const {
+        std::vector<bool> culls;
+        for (std::size_t i = 0; i < bounds_.size(); ++i)
+            culls.push_back(bounds_.guards({0, 0, 0}, {0, 0, 0}, i));
+        return culls;
+    }
+
     std::vector<Ellipsoid<Real>> ellipsoids_;
     std::vector<PointLight<Real>> lights_;
     struct Surface {
@@ -238,6 +232,7 @@ private:
     std::vector<Surface> surfaces_;  // per ellipsoid
     SphereBounds<Real> bounds_;
     std::vector<MappedOrigin<Real>> eye_origin_;  // per ellipsoid, of the camera
+    std::vector<PixelRect> screen_rects_;         // per ellipsoid
     bool can_render_ = false;
     bool culling_tables_ = false;  // light_cones_ built and exact
     Enclosures<Real> enclosures_;
@@ -247,4 +242,4 @@ private:
 
 }  // namespace rt
 
-#include "raytracer/flat_sweep/packet_shading.h"  // the packets: Tracer's members defined there
+#include "raytracer/flat_sweep/packet_shading.h"  // the packets: PacketTracer's members defined there
