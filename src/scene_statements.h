@@ -5,7 +5,6 @@
 #pragma once
 
 #include <algorithm>
-#include <cstdio>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -151,16 +150,20 @@ public:
         using K = Keyword;
         const double* v = f.numbers;
         if (kind == K::Near) {
-            if (!(v[0] > 0)) fail(line, "NEAR is " + format(v[0]) + ", expected a distance greater than 0");
+            if (!(v[0] > 0))
+                fail(line, "NEAR is " + as_written(f.raw[0], v[0]) + ", expected a distance greater than 0");
             scene.near_plane = v[0];
-        } else if (kind == K::Left) {
-            scene.left = v[0];
-        } else if (kind == K::Right) {
-            scene.right = v[0];
-        } else if (kind == K::Bottom) {
-            scene.bottom = v[0];
-        } else if (kind == K::Top) {
-            scene.top = v[0];
+        } else if (kind == K::Left || kind == K::Right) {
+            (kind == K::Left ? scene.left : scene.right) = v[0];
+            window_[kind == K::Left ? 0 : 1] = as_written(f.raw[0], v[0]);
+            // Checked on the line of the later of the two, where the mistake shows.
+            if (line_of("LEFT") != 0 && line_of("RIGHT") != 0 && !(scene.left < scene.right))
+                fail(line, "LEFT " + window_[0] + " and RIGHT " + window_[1] + ", expected LEFT < RIGHT");
+        } else if (kind == K::Bottom || kind == K::Top) {
+            (kind == K::Bottom ? scene.bottom : scene.top) = v[0];
+            window_[kind == K::Bottom ? 2 : 3] = as_written(f.raw[0], v[0]);
+            if (line_of("BOTTOM") != 0 && line_of("TOP") != 0 && !(scene.bottom < scene.top))
+                fail(line, "BOTTOM " + window_[2] + " and TOP " + window_[3] + ", expected BOTTOM < TOP");
         } else if (kind == K::Res) {
             const long long columns = f.counts[0], rows = f.counts[1];
             if (columns > kMaxImageSide || rows > kMaxImageSide || columns * rows > kMaxImagePixels) {
@@ -175,7 +178,8 @@ public:
             for (std::size_t axis = 0; axis < 3; ++axis) {
                 if (v[3 + axis] == 0) {
                     fail(line, "SPHERE " + shown(f.names[0]) + " <scl " + "xyz"[axis] + "> is " +
-                                   shown(f.raw[4 + axis]) + ", expected a non-zero scale");
+                                   shown(f.raw[4 + axis]) + read_as_zero(f.raw[4 + axis]) +
+                                   ", expected a non-zero scale");
                 }
             }
             SphereSpec& s = scene.spheres.emplace_back();
@@ -195,11 +199,16 @@ public:
         }
     }
 
-    // As an ostream shows it by default (6 significant digits), without <sstream>.
-    static std::string format(double value) {
-        char text[32];
-        std::snprintf(text, sizeof text, "%g", value);
-        return text;
+    // A number's token as the file writes it (not rounded for the message: LEFT 0.3000001
+    // and RIGHT 0.3 are told apart).
+    static std::string as_written(std::string_view raw, double value) {
+        return escaped(raw, kMaxShownToken) + (value == 0 ? read_as_zero(raw) : std::string());
+    }
+    // Why a token that is no zero as written reads as 0: it lies below double's range.
+    static std::string read_as_zero(std::string_view raw) {
+        const std::string_view digits = raw.substr(0, raw.find_first_of("eE"));
+        return digits.find_first_of("123456789") != std::string_view::npos ? " (below double's range: 0)"
+                                                                           : std::string();
     }
 
     int line_of(std::string_view keyword) const {
@@ -215,21 +224,11 @@ public:
                             " line, expected exactly one: " + usage_of(statements()[i]));
             }
         }
-        // Each pair is reported on the line of whichever of the two came later.
-        if (!(scene.left < scene.right)) {
-            fail(std::max(line_of("LEFT"), line_of("RIGHT")), "LEFT " + format(scene.left) + " and RIGHT " +
-                                                                  format(scene.right) +
-                                                                  ", expected LEFT < RIGHT");
-        }
-        if (!(scene.bottom < scene.top)) {
-            fail(std::max(line_of("BOTTOM"), line_of("TOP")), "BOTTOM " + format(scene.bottom) + " and TOP " +
-                                                                  format(scene.top) +
-                                                                  ", expected BOTTOM < TOP");
-        }
     }
 
 private:
-    Fields fields_;                                                        // of the current line
+    Fields fields_;          // of the current line
+    std::string window_[4];  // LEFT, RIGHT, BOTTOM and TOP as written, for a message
     std::vector<int> first_line_ = std::vector<int>(statements().size());  // per kind: its first line
 };
 

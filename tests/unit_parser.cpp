@@ -326,6 +326,9 @@ TEST(pieces_report_the_first_mistake_of_one_piece) {
         {{{late, std::string("SPHERE \0", 8)}}, late_line + "a NUL byte"},
         {{{0, ""}, {late, "NEAR 0"}}, late_line + "NEAR is 0"},
         {{{2, ""}, {late, "RIGHT -1"}}, late_line + "LEFT -1 and RIGHT -1"},
+        // A window's mistake shows on the later line of its pair, before a later mistake.
+        {{{2, ""}, {early, "RIGHT -2"}, {late, bad_sphere}},
+         ":" + std::to_string(early + 1) + ": error: LEFT -1 and RIGHT -2"},
         {{{10, ""}}, "big.txt: error: no OUTPUT line"},
         {{{0, "NEAR 0"}, {late, bad_sphere}}, "big.txt:1: error: NEAR is 0"},
         {{{early, bad_sphere}, {late, "NEAR 2"}}, ":" + std::to_string(early + 1) + ": error: SPHERE 'bad'"},
