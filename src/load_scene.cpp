@@ -35,6 +35,8 @@ Scene load_scene(const std::string& path) {
         if (std::filesystem::is_directory(path, ec))
             return SceneError(path, 0, "is a directory, expected a scene file");
         if (!opened && error == ENOENT) return SceneError(path, 0, "does not exist, expected a scene file");
+        if (!opened && error == ENAMETOOLONG)
+            return SceneError(path, 0, "is too long a name or path for the system, expected a scene file");
         if (!opened && error == EACCES)
             return SceneError(
                 path, 0, "cannot be opened for reading: permission denied, expected a readable scene file");

@@ -57,12 +57,12 @@ fs::path folder_of(const fs::path& target) { return target.has_parent_path() ? t
 std::string cannot_create(const std::string& name, const fs::path& folder, int error) {
     std::error_code ec;
     const std::string start = shown(name, kMaxShownPath) + " cannot be created: ";
+    if (error == ENAMETOOLONG) return start + "the name or path is too long for the system";
     if (!fs::exists(folder, ec))
         return start + "its folder " + shown(folder.u8string(), kMaxShownPath) + " does not exist";
     if (!fs::is_directory(folder, ec))
         return start + shown(folder.u8string(), kMaxShownPath) + " is not a folder";
     if (error == EROFS) return start + "its folder is on a read-only file system";
-    if (error == ENAMETOOLONG) return start + "the name is too long for its folder";
     if (error == EACCES || error == EPERM || error == 0)
         return start + "its folder is not writable (permission denied)";
     return start + std::strerror(error);

@@ -1,6 +1,8 @@
 #include "raytracer/output_policy.h"
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <system_error>
 #include <utility>
@@ -13,6 +15,7 @@
 #endif
 #include <windows.h>
 #else
+#include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 #endif
@@ -59,6 +62,15 @@ bool standard_stream_is(int stream, const std::string& file) {
 // A closed standard output has no handle at all here: writing it fails and says so.
 bool standard_output_closed() { return false; }
 bool is_link(const std::string&) { return false; }
+// Here MoveFileExW's own error says it, once the image is made.
+bool name_too_long(const std::string&) { return false; }
+// Why this user may not replace the file at path, or empty: it is read-only.
+std::string unreplaceable(const std::string& path) {
+    const DWORD attributes = GetFileAttributesW(fs::u8path(path).c_str());
+    if (attributes != INVALID_FILE_ATTRIBUTES && (attributes & FILE_ATTRIBUTE_READONLY) != 0)
+        return " is write-protected (read-only), expected a file it may write";
+    return {};
+}
 
 Existing what_is_at(const std::string& path) {
     std::error_code ec;
@@ -97,6 +109,30 @@ bool standard_output_closed() {
 bool is_link(const std::string& path) {
     struct stat s {};
     return ::lstat(path.c_str(), &s) == 0 && S_ISLNK(s.st_mode);
+}
+
+// Whether the system refuses the path as too long (a name past its folder's limit, or a
+// path past the system's): said before the render, not when the image is put there.
+bool name_too_long(const std::string& path) {
+    struct stat s {};
+    return ::stat(path.c_str(), &s) != 0 && errno == ENAMETOOLONG;
+}
+
+// Why this user may not replace the regular file at path, or empty: it is write-protected
+// (a shell's > and cp refuse it too), or another user's in a folder with the sticky bit
+// (/tmp), where rename() may not replace it.
+std::string unreplaceable(const std::string& path) {
+    if (::faccessat(AT_FDCWD, path.c_str(), W_OK, AT_EACCESS) != 0 && errno == EACCES)
+        return " is write-protected (no write permission for this user), expected a file it may write";
+    const fs::path parent = fs::path(path).parent_path();
+    struct stat file {
+    }, folder{};
+    const uid_t user = ::geteuid();
+    if (::stat(path.c_str(), &file) == 0 && ::stat(parent.empty() ? "." : parent.c_str(), &folder) == 0 &&
+        (folder.st_mode & S_ISVTX) != 0 && user != 0 && file.st_uid != user && folder.st_uid != user)
+        return " is another user's file in a folder where only its owner may replace it (sticky, as /tmp), "
+               "expected a file of this user";
+    return {};
 }
 
 Existing what_is_at(const std::string& path) {
@@ -164,6 +200,11 @@ OutputChoice choose_output(const std::string& scene_output, const std::string* u
         choice.refusal = outside_working_folder(choice.path);
         if (!choice.refusal.empty()) return choice;
     }
+    if (name_too_long(choice.path)) {
+        choice.refusal = shown(choice.path, kMaxShownPath) + " is too long a name or path for the system (" +
+                         std::strerror(ENAMETOOLONG) + "), expected a shorter one";
+        return choice;
+    }
     const Existing existing = what_is_at(choice.path);
     if (choice.named_by_user && existing == Existing::Folder && is_link(choice.path) &&
         standard_output_closed() && standard_stream_is(1, choice.path)) {
@@ -195,6 +236,11 @@ OutputChoice choose_output(const std::string& scene_output, const std::string* u
                 shown(choice.path, kMaxShownPath) + " is " + what + ", expected another file for the image";
             return choice;
         }
+    }
+    if (existing == Existing::RegularFile) {
+        const std::string why = unreplaceable(choice.path);
+        if (!why.empty()) choice.refusal = shown(choice.path, kMaxShownPath) + why;
+        return choice;
     }
     if (existing == Existing::Other) {
         if (choice.named_by_user) {

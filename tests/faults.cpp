@@ -8,6 +8,7 @@
 TEST(posix_faults_are_skipped_on_windows) { std::cout << "skip  faults: POSIX processes and signals\n"; }
 #else
 #include <fcntl.h>
+#include <grp.h>
 #include <sys/ioctl.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
@@ -111,6 +112,7 @@ struct Options {
     bool ignore_hangup_and_term = false;  // started as nohup and trap '' TERM start it
     unsigned closed_streams = 0;          // bit k: started with descriptor k closed (2>&- is 4)
     int stdin_fd = -1;                    // where the child's stdin comes from; -1: this process's
+    uid_t user = 0;                       // run as this user and its group (by root); 0: as this one
 };
 
 // Starts raytracer.exe with args in folder.work; stdout and stderr go to files in root.
@@ -147,6 +149,9 @@ pid_t start(const Scratch& folder, const std::vector<std::string>& args, const O
         setrlimit(RLIMIT_AS, &limit);
     }
     if (options.named_temporary) setenv("RAYTRACER_NAMED_TEMPORARY", "1", 1);
+    if (options.user != 0 &&
+        (setgroups(0, nullptr) != 0 || setgid(options.user) != 0 || setuid(options.user) != 0))
+        _exit(125);
     // The signals as a terminal's shell leaves them, whatever this test inherited (nohup
     // ctest, a script's background job): raytracer.exe keeps an ignored one ignored.
     sigset_t interrupts;
@@ -391,6 +396,48 @@ TEST(a_replaced_file_keeps_its_mode) {
         CHECK_EQ(run(folder, {"scene.txt"}, options), 0);
         CHECK_EQ(static_cast<unsigned>(fs::status(folder.work / "new.ppm").permissions()), 0666U & ~mask);
     }
+}
+
+// An image that could not be put in place is refused before the render, not after it:
+// a write-protected file (as a shell's > refuses it), another user's file in a folder
+// with the sticky bit (rename() may not replace it there), a name longer than the
+// system takes. Run by root (as CI is), as another user: root may write anything.
+TEST(unreplaceable_outputs_are_refused_before_the_render) {
+    const Scratch folder;
+    const bool root = geteuid() == 0;
+    Options user;
+    if (root) {
+        user.user = 65534;
+        CHECK_EQ(chmod(folder.work.c_str(), 01777), 0);
+    }
+    write_bytes(folder.work / "scene.txt", small_scene("out.ppm"));
+    const fs::path out = folder.work / "out.ppm";
+    write_bytes(out, kPrecious);
+    if (root) CHECK_EQ(chown(out.c_str(), 65534, 65534), 0);
+    CHECK_EQ(chmod(out.c_str(), 0444), 0);
+    CHECK_EQ(run(folder, {"scene.txt"}, user), 3);
+    CHECK(captured_stderr(folder).find("OUTPUT 'out.ppm' is write-protected") != std::string::npos);
+    CHECK_EQ(run(folder, {"-o", "out.ppm", "scene.txt"}, user), 3);
+    CHECK(captured_stderr(folder).find("-o 'out.ppm' is write-protected") != std::string::npos);
+    CHECK_EQ(read_bytes(out), kPrecious);
+    if (root) {  // root's file, writable by all, in a folder like /tmp
+        const fs::path shared = folder.work / "shared.ppm";
+        write_bytes(shared, kPrecious);
+        CHECK_EQ(chmod(shared.c_str(), 0666), 0);
+        CHECK_EQ(run(folder, {"-o", "shared.ppm", "scene.txt"}, user), 3);
+        CHECK(
+            captured_stderr(folder).find("-o 'shared.ppm' is another user's file in a folder where only its "
+                                         "owner may replace it") != std::string::npos);
+        CHECK_EQ(read_bytes(shared), kPrecious);
+        CHECK_EQ(run(folder, {"-o", "mine.ppm", "scene.txt"}, user), 0);  // a new file is made
+    }
+    CHECK_EQ(run(folder, {"-o", std::string(256, 'a'), "scene.txt"}), 3);
+    CHECK(captured_stderr(folder).find("is too long a name or path for the system") != std::string::npos);
+    CHECK_EQ(run(folder, {std::string(300, 'x') + ".txt"}), 1);
+    CHECK(captured_stderr(folder).find("is too long a name or path for the system, expected a scene file") !=
+          std::string::npos);
+    CHECK_EQ(folder.names(),
+             std::string(root ? "mine.ppm out.ppm scene.txt shared.ppm" : "out.ppm scene.txt"));
 }
 
 // Run by root (as CI is), a replaced image keeps the owner and group of the file it
