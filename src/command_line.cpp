@@ -121,8 +121,9 @@ struct Parser {
                                line.progress == CommandLine::Progress::WhenTerminal && !line.reference &&
                                !(help && version);
             if (!alone) {
-                wrong(std::string(help ? "--help" : "--version") +
-                      " with other arguments, expected it alone or exactly one scene file");
+                const std::string option = help ? "--help" : "--version";
+                wrong(option + " with other arguments, expected " + option +
+                      " alone, or options and one scene file without it");
                 return;
             }
             line.action = help ? CommandLine::Action::Help : CommandLine::Action::Version;

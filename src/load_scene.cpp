@@ -25,7 +25,7 @@ namespace {
 constexpr std::size_t kReadInPiecesBytes = std::size_t{4} << 20;
 }  // namespace
 
-Scene load_scene(const std::string& path) {
+Scene load_scene(const std::string& path, unsigned threads_wanted) {
     // C stdio rather than an ifstream, and the file system asked only when the file
     // cannot be read: an ifstream's first use sets up locale facets, and the two status
     // queries cost system calls; together 0.1 ms of a 2 ms run (docs/speed.md).
@@ -50,7 +50,7 @@ Scene load_scene(const std::string& path) {
     };
     const std::unique_ptr<std::FILE, int (*)(std::FILE*)> in(std::fopen(path.c_str(), "rb"), &std::fclose);
     if (!in) throw cannot_read(false, errno);
-    const unsigned threads = available_cores();
+    const unsigned threads = std::min(threads_asked(threads_wanted), available_cores());
     std::error_code ec;
     const std::uintmax_t size = std::filesystem::file_size(path, ec);
     auto too_large = [&path] {
@@ -61,7 +61,7 @@ Scene load_scene(const std::string& path) {
     if (!ec && size > kMaxSceneFileBytes) throw too_large();  // refused before a byte is read
     // A large file of known size: parsed as read, in pieces; read again as a stream
     // where it changed meanwhile (the stream read starts where the handle is: at the start).
-    if (kReadsInPieces && !ec && size >= kReadInPiecesBytes && size <= kMaxSceneFileBytes && threads > 1) {
+    if (kReadsInPieces && !ec && size >= kReadInPiecesBytes && size <= kMaxSceneFileBytes) {
         if (std::optional<Scene> scene =
                 parse_scene_file(FileAt(in.get(), static_cast<std::size_t>(size)), path, threads))
             return std::move(*scene);

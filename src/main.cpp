@@ -38,18 +38,19 @@ enum ExitStatus : int {
 
 const char* usage_text() {
     return "usage: raytracer.exe [options] <scene-file>\n"
-           "       raytracer.exe -h | --help | --version\n"
+           "       raytracer.exe --help | -h | --version\n"
            "\n"
            "Renders a scene of ellipsoids and point lights (Phong shading, hard shadows,\n"
            "up to 3 mirror bounces) and writes it as a binary PPM (P6) to the file named\n"
            "by the scene's OUTPUT line.\n"
            "\n"
-           "Options (anywhere; a value as --threads N or --threads=N; --threads and -o at\n"
-           "most once; -- ends the options):\n"
+           "Options (anywhere; a value as --threads N or --threads=N, --output=PATH too;\n"
+           "--threads and -o at most once; -- ends the options):\n"
            "  -o PATH, --output PATH  write the image to PATH instead of OUTPUT; any path,\n"
            "                          a device or a FIFO; -o - writes it to standard output\n"
-           "  --threads N             render on N threads, 1 to 1024 (default: all cores);\n"
-           "                          the image is the same, byte for byte, for any N\n"
+           "  --threads N             read and render on N threads, 1 to 1024 (default: all\n"
+           "                          cores); the image is the same, byte for byte, for\n"
+           "                          any N\n"
            "  --progress, --quiet     show, or never show, the progress line (default: shown\n"
            "                          on a terminal once a render takes over a second)\n"
            "  --reference             render through the reference path: every ray against\n"
@@ -163,7 +164,7 @@ int main(int argc, char** argv) {
         std::size_t ellipsoids = 0, lights = 0;
     } size;
     try {
-        rt::Scene scene = rt::load_scene(line.scene_file);
+        rt::Scene scene = rt::load_scene(line.scene_file, line.threads);
         rt::bring_lengths_near_one(scene);  // a scene drawn at 1e160 renders as at 1
         size = {true, scene.columns, scene.rows, scene.spheres.size(), scene.lights.size()};
         return render(line, scene);

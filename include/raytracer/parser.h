@@ -47,8 +47,9 @@ inline bool is_utf16(std::string_view text) {
     return text.rfind("\xFF\xFE", 0) == 0 || text.rfind("\xFE\xFF", 0) == 0;
 }
 
-// Reads and parses a scene file, on as many threads as there are cores. Refuses what is not a scene file at
+// Reads and parses a scene file, on `threads` threads at most (0: as many as there are cores, as a
+// render's --threads). Refuses what is not a scene file at
 // all (missing, unreadable, a directory, empty, binary) with a SceneError that has no line.
-Scene load_scene(const std::string& path);
+Scene load_scene(const std::string& path, unsigned threads = 0);
 
 }  // namespace rt
