@@ -1,10 +1,6 @@
-// render_to(): the path a scene takes (docs/speed.md): the tree (render_tree.cpp) past
-// the flat sweep's range (takes_the_tree(): more than 200 ellipsoids, too many pairs of
-// ellipsoids and lights, lengths its arithmetic cannot square), the flat sweep
-// (flat_sweep/render_flat_sweep.cpp) within it. render_flat_sweep_to() may still hand the
-// scene to the tree: in float, or where its own tables say its packets would not pay
-// (PacketTracer::can_render(): fewer pixels than pairs of ellipsoids, thin ellipsoids it
-// cannot cull).
+// render_to(): the path a scene takes (docs/speed.md), decided here: the flat sweep
+// (flat_sweep/render_flat_sweep.cpp) within its range, unless it declines; the tree
+// (render_tree.cpp) for every other scene.
 #include "raytracer/render.h"
 
 #include <utility>
@@ -16,8 +12,12 @@ namespace rt {
 
 template <typename Real>
 void render_to(const Scene& scene, RowSink& sink, unsigned threads) {
-    if (takes_the_tree(scene)) return render_tree_to<Real>(scene, sink, threads);
-    render_flat_sweep_to<Real>(scene, sink, threads);
+    // Past the range: more than 200 ellipsoids, too many pairs of ellipsoids and lights,
+    // lengths its arithmetic cannot square (takes_the_tree()). Declined: float, or where
+    // its tables say its packets would not pay (PacketTracer::can_render(): fewer pixels
+    // than pairs of ellipsoids, thin ellipsoids it cannot cull).
+    if (takes_the_tree(scene) || !render_flat_sweep_to<Real>(scene, sink, threads))
+        render_tree_to<Real>(scene, sink, threads);
 }
 
 template <typename Real>

@@ -13,7 +13,6 @@
 #include "raytracer/flat_sweep/packet_tracer.h"
 #include "raytracer/helper_pool.h"
 #include "raytracer/own_cache_lines.h"
-#include "raytracer/render_tree.h"
 #include "raytracer/row_ring.h"
 
 namespace rt {
@@ -293,26 +292,24 @@ void sweep_rows(FlatSweep<Real>& sweep, const Scene& scene, unsigned threads, un
 }  // namespace
 
 template <typename Real>
-void render_flat_sweep_to(const Scene& scene, RowSink& sink, unsigned threads) {
+bool render_flat_sweep_to(const Scene& scene, RowSink& sink, unsigned threads) {
     if constexpr (kFlatSweepPrecision<Real>) {
         PacketTracer<Real> tracer(scene);
-        if (tracer.can_render()) {
-            const unsigned most_threads = threads_asked(threads);
-            FlatSweep<Real> sweep(scene, std::move(tracer), sink, most_threads);
-            return sweep_rows(sweep, scene, threads, most_threads);
-        }
+        if (!tracer.can_render()) return false;  // its tables freed before the tree is built
+        const unsigned most_threads = threads_asked(threads);
+        FlatSweep<Real> sweep(scene, std::move(tracer), sink, most_threads);
+        sweep_rows(sweep, scene, threads, most_threads);
+        return true;
     }
-    // A precision or a scene the flat sweep does not render: the tree (once the
-    // tracer's tables are freed).
-    render_tree_to<Real>(scene, sink, threads);
+    return false;
 }
 
 // As render.cpp: double for raytracer.exe, float and long double for the tests.
 #ifdef RAYTRACER_EXTRA_PRECISIONS
-template void render_flat_sweep_to<float>(const Scene&, RowSink&, unsigned);
-template void render_flat_sweep_to<long double>(const Scene&, RowSink&, unsigned);
+template bool render_flat_sweep_to<float>(const Scene&, RowSink&, unsigned);
+template bool render_flat_sweep_to<long double>(const Scene&, RowSink&, unsigned);
 #else
-template void render_flat_sweep_to<double>(const Scene&, RowSink&, unsigned);
+template bool render_flat_sweep_to<double>(const Scene&, RowSink&, unsigned);
 #endif
 
 }  // namespace rt

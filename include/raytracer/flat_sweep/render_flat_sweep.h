@@ -51,10 +51,11 @@ inline bool takes_the_tree(const Scene& scene) {
 template <typename Real>
 inline constexpr bool kFlatSweepPrecision = std::is_same_v<AtLeastDouble<Real>, Real>;
 
-// Instantiated for float, double and long double; threads = 0: see render_to(). A
-// precision the flat sweep does not render in, or a scene where its packets would not
-// pay (PacketTracer::can_render()), goes to the tree from here.
+// The image through the flat sweep, or false with nothing rendered where it declines: a
+// precision it does not render in, or a scene where its packets would not pay
+// (PacketTracer::can_render()). Instantiated for float, double and long double; threads
+// = 0: see render_to().
 template <typename Real>
-void render_flat_sweep_to(const Scene& scene, RowSink& sink, unsigned threads);
+bool render_flat_sweep_to(const Scene& scene, RowSink& sink, unsigned threads);
 
 }  // namespace rt
