@@ -64,6 +64,7 @@ bool standard_output_closed() { return false; }
 bool is_link(const std::string&) { return false; }
 // Here MoveFileExW's own error says it, once the image is made.
 bool name_too_long(const std::string&) { return false; }
+bool is_terminal(const std::string&) { return false; }
 // Why this user may not replace the file at path, or empty: it is read-only.
 std::string unreplaceable(const std::string& path) {
     const DWORD attributes = GetFileAttributesW(fs::u8path(path).c_str());
@@ -133,6 +134,18 @@ std::string unreplaceable(const std::string& path) {
         return " is another user's file in a folder where only its owner may replace it (sticky, as /tmp), "
                "expected a file of this user";
     return {};
+}
+
+// Whether the device at path is a terminal (-o /dev/tty): a binary image would garble it,
+// as -o - on one would (main.cpp). Opened without becoming the controlling terminal and
+// without waiting for a serial line's carrier.
+bool is_terminal(const std::string& path) {
+    struct stat s {};
+    if (::stat(path.c_str(), &s) != 0 || !S_ISCHR(s.st_mode)) return false;
+    const int fd = ::open(path.c_str(), O_WRONLY | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
+    const bool terminal = fd >= 0 && ::isatty(fd) != 0;
+    if (fd >= 0) ::close(fd);
+    return terminal;
 }
 
 Existing what_is_at(const std::string& path) {
@@ -243,7 +256,10 @@ OutputChoice choose_output(const std::string& scene_output, const std::string* u
         return choice;
     }
     if (existing == Existing::Other) {
-        if (choice.named_by_user) {
+        if (choice.named_by_user && is_terminal(choice.path)) {
+            choice.refusal = shown(choice.path, kMaxShownPath) +
+                             " is a terminal, expected a pipe or a file for a binary image";
+        } else if (choice.named_by_user) {
             choice.destination = Destination::WriteInto;  // a device or FIFO the user chose
         } else {
             choice.refusal = shown(choice.path, kMaxShownPath) +

@@ -607,6 +607,38 @@ std::string progress_on_terminal(const Scratch& folder, unsigned short columns) 
     return shown;
 }
 
+// A binary image is not written to a terminal, whether -o - (standard output) or -o
+// names it (/dev/tty, a pseudo-terminal's device).
+TEST(an_image_is_not_written_to_a_terminal) {
+    const Scratch folder;
+    write_bytes(folder.work / "scene.txt", small_scene("out.ppm"));
+    const int master = posix_openpt(O_RDWR | O_NOCTTY);
+    CHECK(master >= 0 && grantpt(master) == 0 && unlockpt(master) == 0);
+    const std::string device = ptsname(master);
+    const int terminal = open(device.c_str(), O_RDWR | O_NOCTTY);
+    CHECK(terminal >= 0 && fcntl(master, F_SETFL, O_NONBLOCK) == 0);
+    // The terminal drained meanwhile: were the image written there, the run would end
+    // (and fail the check) rather than block on a full terminal.
+    auto run_draining = [&](const std::vector<std::string>& args, const Options& options) {
+        const pid_t pid = start(folder, args, options);
+        char buffer[4096];
+        int status = 0;
+        while (waitpid(pid, &status, WNOHANG) == 0) {
+            while (read(master, buffer, sizeof buffer) > 0) {
+            }
+            std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        }
+        return WIFEXITED(status) ? WEXITSTATUS(status) : 1000 + WTERMSIG(status);
+    };
+    CHECK_EQ(run_draining({"-o", device, "scene.txt"}, {}), 3);
+    CHECK(captured_stderr(folder).find("' is a terminal, expected a pipe or a file") != std::string::npos);
+    Options on_terminal;
+    on_terminal.stdout_fd = terminal;
+    CHECK_EQ(run_draining({"-o", "-", "scene.txt"}, on_terminal), 3);
+    CHECK(captured_stderr(folder).find("-o '-' is a terminal") != std::string::npos);
+    close(terminal), close(master);
+}
+
 // On a terminal, a render past a second shows one line kept up to date, erased at the
 // end: no newline at all, and never wider than the terminal (a wider one would wrap and
 // leave its start behind).
