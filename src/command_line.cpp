@@ -35,6 +35,7 @@ struct Parser {
     CommandLine line;
     std::vector<std::string> files;
     bool help = false, version = false;
+    std::string help_as;  // --help or -h
 
     bool wrong(const std::string& what) {
         line.action = CommandLine::Action::Wrong;
@@ -70,6 +71,7 @@ struct Parser {
             line.reference = true;
         } else if (name == "--help" || name == "-h") {
             help = true;
+            help_as = name;  // as the user spelled it, for a message
         } else if (name == "--version") {
             version = true;
         } else {
@@ -121,7 +123,7 @@ struct Parser {
                                line.progress == CommandLine::Progress::WhenTerminal && !line.reference &&
                                !(help && version);
             if (!alone) {
-                const std::string option = help ? "--help" : "--version";
+                const std::string option = help ? help_as : "--version";
                 wrong(option + " with other arguments, expected " + option +
                       " alone, or options and one scene file without it");
                 return;

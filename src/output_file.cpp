@@ -46,9 +46,9 @@ fs::path temporary_name_in(const fs::path& folder) {
     x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ULL;
     x = (x ^ (x >> 27)) * 0x94D049BB133111EBULL;
     x ^= x >> 31;
-    std::string name = ".raytracer-";
+    std::string name(kTemporaryPrefix);
     for (int shift = 60; shift >= 0; shift -= 4) name += "0123456789abcdef"[(x >> shift) & 0xF];
-    return folder / (name + ".tmp");
+    return folder / (name + std::string(kTemporarySuffix));
 }
 
 fs::path folder_of(const fs::path& target) { return target.has_parent_path() ? target.parent_path() : "."; }

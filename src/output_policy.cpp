@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <system_error>
 #include <utility>
 
+#include "raytracer/output_file.h"
 #include "raytracer/shown.h"
 
 #ifdef _WIN32
@@ -64,7 +66,6 @@ bool standard_output_closed() { return false; }
 bool is_link(const std::string&) { return false; }
 // Here MoveFileExW's own error says it, once the image is made.
 bool name_too_long(const std::string&) { return false; }
-bool is_terminal(const std::string&) { return false; }
 // Why this user may not replace the file at path, or empty: it is read-only.
 std::string unreplaceable(const std::string& path) {
     const DWORD attributes = GetFileAttributesW(fs::u8path(path).c_str());
@@ -114,38 +115,52 @@ bool is_link(const std::string& path) {
 
 // Whether the system refuses the path as too long (a name past its folder's limit, or a
 // path past the system's): said before the render, not when the image is put there.
+// The temporary's name in the same folder is asked too (a name of its length): the image
+// goes there before it replaces an existing file (and always where there is no O_TMPFILE).
 bool name_too_long(const std::string& path) {
+    const fs::path folder = fs::path(path).parent_path();
+    const std::string temporary = (folder / std::string(kTemporaryNameBytes, 'x')).string();
     struct stat s {};
-    return ::stat(path.c_str(), &s) != 0 && errno == ENAMETOOLONG;
+    for (const std::string& name : {path, temporary})
+        if (::stat(name.c_str(), &s) != 0 && errno == ENAMETOOLONG) return true;
+    return false;
+}
+
+// Whether this process may replace another user's file in a sticky folder: CAP_FOWNER
+// (on Linux its effective capabilities, which root in a container may lack), else root.
+bool overrides_sticky_folders() {
+#ifdef __linux__
+    if (std::FILE* status = std::fopen("/proc/self/status", "r")) {
+        char line[256];
+        unsigned long long effective = 0;
+        bool found = false;
+        while (!found && std::fgets(line, sizeof line, status) != nullptr)
+            found = std::sscanf(line, "CapEff: %llx", &effective) == 1;
+        std::fclose(status);
+        if (found) return (effective >> 3 & 1U) != 0;  // CAP_FOWNER is capability 3
+    }
+#endif
+    return ::geteuid() == 0;
 }
 
 // Why this user may not replace the regular file at path, or empty: it is write-protected
-// (a shell's > and cp refuse it too), or another user's in a folder with the sticky bit
-// (/tmp), where rename() may not replace it.
+// (a policy: a shell's > and cp refuse it too), or another user's in a folder with the
+// sticky bit (/tmp), where rename() may not replace it. A symbolic link at the name is
+// what is replaced (not followed): its own owner counts, not its target's permissions.
 std::string unreplaceable(const std::string& path) {
-    if (::faccessat(AT_FDCWD, path.c_str(), W_OK, AT_EACCESS) != 0 && errno == EACCES)
+    struct stat name {
+    }, folder{};
+    if (::lstat(path.c_str(), &name) != 0) return {};
+    if (!S_ISLNK(name.st_mode) && ::faccessat(AT_FDCWD, path.c_str(), W_OK, AT_EACCESS) != 0 &&
+        errno == EACCES)
         return " is write-protected (no write permission for this user), expected a file it may write";
     const fs::path parent = fs::path(path).parent_path();
-    struct stat file {
-    }, folder{};
     const uid_t user = ::geteuid();
-    if (::stat(path.c_str(), &file) == 0 && ::stat(parent.empty() ? "." : parent.c_str(), &folder) == 0 &&
-        (folder.st_mode & S_ISVTX) != 0 && user != 0 && file.st_uid != user && folder.st_uid != user)
+    if (::stat(parent.empty() ? "." : parent.c_str(), &folder) == 0 && (folder.st_mode & S_ISVTX) != 0 &&
+        name.st_uid != user && folder.st_uid != user && !overrides_sticky_folders())
         return " is another user's file in a folder where only its owner may replace it (sticky, as /tmp), "
                "expected a file of this user";
     return {};
-}
-
-// Whether the device at path is a terminal (-o /dev/tty): a binary image would garble it,
-// as -o - on one would (main.cpp). Opened without becoming the controlling terminal and
-// without waiting for a serial line's carrier.
-bool is_terminal(const std::string& path) {
-    struct stat s {};
-    if (::stat(path.c_str(), &s) != 0 || !S_ISCHR(s.st_mode)) return false;
-    const int fd = ::open(path.c_str(), O_WRONLY | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
-    const bool terminal = fd >= 0 && ::isatty(fd) != 0;
-    if (fd >= 0) ::close(fd);
-    return terminal;
 }
 
 Existing what_is_at(const std::string& path) {
@@ -202,7 +217,7 @@ OutputChoice choose_output(const std::string& scene_output, const std::string* u
     if (choice.named_by_user && choice.path == "-") {
         choice.destination = Destination::StandardOutput;
         if (standard_output_closed())  // raytracer.exe -o - scene.txt >&-
-            choice.refusal = "- (standard output) is closed, expected an open standard output";
+            choice.refusal = "- (standard output) is closed (or a folder), expected a pipe or a file";
         // raytracer.exe -o - scene.txt >> scene.txt
         else if (standard_stream_is(1, scene_file))
             choice.refusal =
@@ -222,7 +237,7 @@ OutputChoice choose_output(const std::string& scene_output, const std::string* u
     if (choice.named_by_user && existing == Existing::Folder && is_link(choice.path) &&
         standard_output_closed() && standard_stream_is(1, choice.path)) {
         choice.refusal = shown(choice.path, kMaxShownPath) +
-                         " is standard output, which is closed, expected an open standard output";
+                         " is standard output, which is closed (or a folder), expected a pipe or a file";
         return choice;
     }
     if (existing == Existing::Nothing || existing == Existing::Folder)
@@ -256,10 +271,7 @@ OutputChoice choose_output(const std::string& scene_output, const std::string* u
         return choice;
     }
     if (existing == Existing::Other) {
-        if (choice.named_by_user && is_terminal(choice.path)) {
-            choice.refusal = shown(choice.path, kMaxShownPath) +
-                             " is a terminal, expected a pipe or a file for a binary image";
-        } else if (choice.named_by_user) {
+        if (choice.named_by_user) {
             choice.destination = Destination::WriteInto;  // a device or FIFO the user chose
         } else {
             choice.refusal = shown(choice.path, kMaxShownPath) +

@@ -158,12 +158,14 @@ public:
             window_[kind == K::Left ? 0 : 1] = as_written(f.raw[0], v[0]);
             // Checked on the line of the later of the two, where the mistake shows.
             if (line_of("LEFT") != 0 && line_of("RIGHT") != 0 && !(scene.left < scene.right))
-                fail(line, "LEFT " + window_[0] + " and RIGHT " + window_[1] + ", expected LEFT < RIGHT");
+                fail(line, "LEFT " + window_[0] + " and RIGHT " + window_[1] + equal_in_double(0) +
+                               ", expected LEFT < RIGHT");
         } else if (kind == K::Bottom || kind == K::Top) {
             (kind == K::Bottom ? scene.bottom : scene.top) = v[0];
             window_[kind == K::Bottom ? 2 : 3] = as_written(f.raw[0], v[0]);
             if (line_of("BOTTOM") != 0 && line_of("TOP") != 0 && !(scene.bottom < scene.top))
-                fail(line, "BOTTOM " + window_[2] + " and TOP " + window_[3] + ", expected BOTTOM < TOP");
+                fail(line, "BOTTOM " + window_[2] + " and TOP " + window_[3] + equal_in_double(2) +
+                               ", expected BOTTOM < TOP");
         } else if (kind == K::Res) {
             const long long columns = f.counts[0], rows = f.counts[1];
             if (columns > kMaxImageSide || rows > kMaxImageSide || columns * rows > kMaxImagePixels) {
@@ -203,6 +205,12 @@ public:
     // and RIGHT 0.3 are told apart).
     static std::string as_written(std::string_view raw, double value) {
         return escaped(raw, kMaxShownToken) + (value == 0 ? read_as_zero(raw) : std::string());
+    }
+    // Where a pair's tokens differ but read as one double (0.3 and 0.30000000000000001):
+    // rounding keeps their order, so only such a tie looks right as written.
+    std::string equal_in_double(int first) const {
+        const double a = first == 0 ? scene.left : scene.bottom, b = first == 0 ? scene.right : scene.top;
+        return a == b && window_[first] != window_[first + 1] ? " (equal in double)" : "";
     }
     // Why a token that is no zero as written reads as 0: it lies below double's range.
     static std::string read_as_zero(std::string_view raw) {

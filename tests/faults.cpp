@@ -420,6 +420,13 @@ TEST(unreplaceable_outputs_are_refused_before_the_render) {
     CHECK_EQ(run(folder, {"-o", "out.ppm", "scene.txt"}, user), 3);
     CHECK(captured_stderr(folder).find("-o 'out.ppm' is write-protected") != std::string::npos);
     CHECK_EQ(read_bytes(out), kPrecious);
+    // A symbolic link at the name is replaced, not followed: its target's permissions
+    // do not count, nor its target's owner in the sticky folder.
+    CHECK_EQ(symlink("out.ppm", (folder.work / "linked.ppm").c_str()), 0);
+    if (root) CHECK_EQ(lchown((folder.work / "linked.ppm").c_str(), 65534, 65534), 0);
+    CHECK_EQ(run(folder, {"-o", "linked.ppm", "scene.txt"}, user), 0);
+    CHECK(fs::is_regular_file(fs::symlink_status(folder.work / "linked.ppm")));
+    CHECK_EQ(read_bytes(out), kPrecious);
     if (root) {  // root's file, writable by all, in a folder like /tmp
         const fs::path shared = folder.work / "shared.ppm";
         write_bytes(shared, kPrecious);
@@ -436,8 +443,8 @@ TEST(unreplaceable_outputs_are_refused_before_the_render) {
     CHECK_EQ(run(folder, {std::string(300, 'x') + ".txt"}), 1);
     CHECK(captured_stderr(folder).find("is too long a name or path for the system, expected a scene file") !=
           std::string::npos);
-    CHECK_EQ(folder.names(),
-             std::string(root ? "mine.ppm out.ppm scene.txt shared.ppm" : "out.ppm scene.txt"));
+    CHECK_EQ(folder.names(), std::string(root ? "linked.ppm mine.ppm out.ppm scene.txt shared.ppm"
+                                              : "linked.ppm out.ppm scene.txt"));
 }
 
 // Run by root (as CI is), a replaced image keeps the owner and group of the file it
@@ -607,35 +614,30 @@ std::string progress_on_terminal(const Scratch& folder, unsigned short columns) 
     return shown;
 }
 
-// A binary image is not written to a terminal, whether -o - (standard output) or -o
-// names it (/dev/tty, a pseudo-terminal's device).
-TEST(an_image_is_not_written_to_a_terminal) {
+// -o - with standard output on a terminal is refused: a binary image would garble it
+// (a device the user names with -o, a serial line too, is written into as asked).
+TEST(standard_output_on_a_terminal_is_refused) {
     const Scratch folder;
     write_bytes(folder.work / "scene.txt", small_scene("out.ppm"));
     const int master = posix_openpt(O_RDWR | O_NOCTTY);
     CHECK(master >= 0 && grantpt(master) == 0 && unlockpt(master) == 0);
-    const std::string device = ptsname(master);
-    const int terminal = open(device.c_str(), O_RDWR | O_NOCTTY);
+    const int terminal = open(ptsname(master), O_RDWR | O_NOCTTY);
     CHECK(terminal >= 0 && fcntl(master, F_SETFL, O_NONBLOCK) == 0);
-    // The terminal drained meanwhile: were the image written there, the run would end
-    // (and fail the check) rather than block on a full terminal.
-    auto run_draining = [&](const std::vector<std::string>& args, const Options& options) {
-        const pid_t pid = start(folder, args, options);
-        char buffer[4096];
-        int status = 0;
-        while (waitpid(pid, &status, WNOHANG) == 0) {
-            while (read(master, buffer, sizeof buffer) > 0) {
-            }
-            std::this_thread::sleep_for(std::chrono::milliseconds(1));
-        }
-        return WIFEXITED(status) ? WEXITSTATUS(status) : 1000 + WTERMSIG(status);
-    };
-    CHECK_EQ(run_draining({"-o", device, "scene.txt"}, {}), 3);
-    CHECK(captured_stderr(folder).find("' is a terminal, expected a pipe or a file") != std::string::npos);
     Options on_terminal;
     on_terminal.stdout_fd = terminal;
-    CHECK_EQ(run_draining({"-o", "-", "scene.txt"}, on_terminal), 3);
-    CHECK(captured_stderr(folder).find("-o '-' is a terminal") != std::string::npos);
+    // The terminal drained meanwhile: were the image written there, the run would end
+    // (and fail the check) rather than block on a full terminal.
+    const pid_t pid = start(folder, {"-o", "-", "scene.txt"}, on_terminal);
+    char buffer[4096];
+    int status = 0;
+    while (waitpid(pid, &status, WNOHANG) == 0) {
+        while (read(master, buffer, sizeof buffer) > 0) {
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    CHECK(WIFEXITED(status) && WEXITSTATUS(status) == 3);
+    CHECK(captured_stderr(folder).find("-o '-' is a terminal, expected a pipe or a file") !=
+          std::string::npos);
     close(terminal), close(master);
 }
 
@@ -725,7 +727,8 @@ TEST(o_naming_standard_output_writes_to_it) {
     closed.closed_streams = 2;
     CHECK_EQ(run(folder, {"-o", "-", "scene.txt"}, closed), 3);
     CHECK(captured_stderr(folder).find(
-              "-o - (standard output) is closed, expected an open standard output") != std::string::npos);
+              "-o - (standard output) is closed (or a folder), expected a pipe or a file") !=
+          std::string::npos);
     if (fs::exists("/dev/stdout")) {  // by its name too, not "is a folder"
         CHECK_EQ(run(folder, {"-o", "/dev/stdout", "scene.txt"}, closed), 3);
         CHECK(captured_stderr(folder).find("-o '/dev/stdout' is standard output, which is closed") !=

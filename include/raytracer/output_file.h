@@ -8,8 +8,15 @@
 #include <cstdint>
 #include <cstdio>
 #include <string>
+#include <string_view>
 
 namespace rt {
+
+// The hidden temporary an image is written to before it is put in place: the prefix, 16
+// hex digits and the suffix (output_file.cpp); choose_output() asks the system about a
+// name of its length in the image's folder.
+inline constexpr std::string_view kTemporaryPrefix = ".raytracer-", kTemporarySuffix = ".tmp";
+inline constexpr std::size_t kTemporaryNameBytes = kTemporaryPrefix.size() + 16 + kTemporarySuffix.size();
 
 // Where the bytes go.
 enum class Destination {

@@ -761,7 +761,10 @@ TEST(windows_far_smaller_than_the_ellipsoids_render_as_the_reference) {
                 "window " + std::to_string(std::log10(k)) + ", seed " + std::to_string(seed);
             CHECK(renders_as_plain<double>(name, t, 1));
             rt::ImageSink sweep(t.columns, t.rows);
-            if (!rt::render_flat_sweep_to<double>(t, sweep, 1)) rt::render_tree_to<double>(t, sweep, 1);
+            if (!rt::render_flat_sweep_to<double>(t, sweep, 1)) {
+                std::cout << name << ": the flat sweep declined\n";
+                continue;
+            }
             const ImageDiff d = compare_images(sweep.image, rt::render_reference<double>(t, 1));
             if (d.differing_pixels != 0) std::cerr << name << ": the flat sweep differs\n";
             CHECK_EQ(d.differing_pixels, 0);

@@ -38,7 +38,8 @@ inline constexpr double kFlatSweepSmallest = 1e-60, kFlatSweepLargest = 1e60;
 // the flat sweep's range.
 bool lengths_fit_the_flat_sweep(const Scene& scene);
 
-// Whether render_to() takes the tree rather than the flat sweep for the scene.
+// Whether the scene lies past the flat sweep's range, so that render_to() takes the tree
+// without asking the flat sweep (which may still decline a scene within it).
 inline bool takes_the_tree(const Scene& scene) {
     const std::size_t ellipsoids = scene.spheres.size();
     return ellipsoids > kFlatSweepEllipsoids || ellipsoids * scene.lights.size() > kFlatSweepPairs ||
