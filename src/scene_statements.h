@@ -153,19 +153,12 @@ public:
             if (!(v[0] > 0))
                 fail(line, "NEAR is " + as_written(f.raw[0], v[0]) + ", expected a distance greater than 0");
             scene.near_plane = v[0];
-        } else if (kind == K::Left || kind == K::Right) {
-            (kind == K::Left ? scene.left : scene.right) = v[0];
-            window_[kind == K::Left ? 0 : 1] = as_written(f.raw[0], v[0]);
-            // Checked on the line of the later of the two, where the mistake shows.
-            if (line_of("LEFT") != 0 && line_of("RIGHT") != 0 && !(scene.left < scene.right))
-                fail(line, "LEFT " + window_[0] + " and RIGHT " + window_[1] + equal_in_double(0) +
-                               ", expected LEFT < RIGHT");
-        } else if (kind == K::Bottom || kind == K::Top) {
-            (kind == K::Bottom ? scene.bottom : scene.top) = v[0];
-            window_[kind == K::Bottom ? 2 : 3] = as_written(f.raw[0], v[0]);
-            if (line_of("BOTTOM") != 0 && line_of("TOP") != 0 && !(scene.bottom < scene.top))
-                fail(line, "BOTTOM " + window_[2] + " and TOP " + window_[3] + equal_in_double(2) +
-                               ", expected BOTTOM < TOP");
+        } else if (kind == K::Left || kind == K::Right || kind == K::Bottom || kind == K::Top) {
+            window_side(kind == K::Left     ? 0
+                        : kind == K::Right  ? 1
+                        : kind == K::Bottom ? 2
+                                            : 3,
+                        v[0], f.raw[0], line);
         } else if (kind == K::Res) {
             const long long columns = f.counts[0], rows = f.counts[1];
             if (columns > kMaxImageSide || rows > kMaxImageSide || columns * rows > kMaxImagePixels) {
@@ -206,11 +199,21 @@ public:
     static std::string as_written(std::string_view raw, double value) {
         return escaped(raw, kMaxShownToken) + (value == 0 ? read_as_zero(raw) : std::string());
     }
-    // Where a pair's tokens differ but read as one double (0.3 and 0.30000000000000001):
-    // rounding keeps their order, so only such a tie looks right as written.
-    std::string equal_in_double(int first) const {
-        const double a = first == 0 ? scene.left : scene.bottom, b = first == 0 ? scene.right : scene.top;
-        return a == b && window_[first] != window_[first + 1] ? " (equal in double)" : "";
+    // LEFT, RIGHT, BOTTOM or TOP (side 0 to 3): its value, and its pair checked once both
+    // are known, on the line of the later of the two, where the mistake shows.
+    void window_side(int side, double value, std::string_view raw, int line) {
+        static constexpr const char* kNames[4] = {"LEFT", "RIGHT", "BOTTOM", "TOP"};
+        double* const values[4] = {&scene.left, &scene.right, &scene.bottom, &scene.top};
+        *values[side] = value;
+        window_[side] = as_written(raw, value);
+        const int low = side & ~1, high = low + 1;
+        if (line_of(kNames[low]) == 0 || line_of(kNames[high]) == 0 || *values[low] < *values[high]) return;
+        // Rounding keeps the tokens' order, so only a tie in double can look right as written
+        // (0.3 and 0.30000000000000001).
+        const bool tie = *values[low] == *values[high] && window_[low] != window_[high];
+        fail(line, std::string(kNames[low]) + " " + window_[low] + " and " + kNames[high] + " " +
+                       window_[high] + (tie ? " (equal in double)" : "") + ", expected " + kNames[low] +
+                       " < " + kNames[high]);
     }
     // Why a token that is no zero as written reads as 0: it lies below double's range.
     static std::string read_as_zero(std::string_view raw) {
