@@ -100,8 +100,9 @@ bool standard_stream_is(int stream, const std::string& file) {
     return ::fstat(stream, &x) == 0 && ::stat(file.c_str(), &y) == 0 && same_identity(x, y);
 }
 
-// Whether standard output was closed when the program started: main() then holds its
-// number open on the root folder (keep_standard_streams_apart()), where no image can go.
+// Whether standard output is a folder, where no image can go: closed when the program
+// started (main() then holds its number open on the root folder:
+// keep_standard_streams_apart()), or a folder handed to it as such.
 bool standard_output_closed() {
     struct stat s {};
     return ::fstat(1, &s) == 0 && S_ISDIR(s.st_mode);
