@@ -62,7 +62,7 @@ bool standard_stream_is(int stream, const std::string& file) {
 }
 
 // A closed standard output has no handle at all here: writing it fails and says so.
-bool standard_output_closed() { return false; }
+bool standard_output_is_folder() { return false; }
 bool is_link(const std::string&) { return false; }
 // Here MoveFileExW's own error says it, once the image is made.
 bool name_too_long(const std::string&) { return false; }
@@ -103,7 +103,7 @@ bool standard_stream_is(int stream, const std::string& file) {
 // Whether standard output is a folder, where no image can go: closed when the program
 // started (main() then holds its number open on the root folder:
 // keep_standard_streams_apart()), or a folder handed to it as such.
-bool standard_output_closed() {
+bool standard_output_is_folder() {
     struct stat s {};
     return ::fstat(1, &s) == 0 && S_ISDIR(s.st_mode);
 }
@@ -217,7 +217,7 @@ OutputChoice choose_output(const std::string& scene_output, const std::string* u
     choice.path = choice.named_by_user ? *user_output : scene_output;
     if (choice.named_by_user && choice.path == "-") {
         choice.destination = Destination::StandardOutput;
-        if (standard_output_closed())  // raytracer.exe -o - scene.txt >&-
+        if (standard_output_is_folder())  // raytracer.exe -o - scene.txt >&-
             choice.refusal = "- (standard output) is closed (or a folder), expected a pipe or a file";
         // raytracer.exe -o - scene.txt >> scene.txt
         else if (standard_stream_is(1, scene_file))
@@ -236,7 +236,7 @@ OutputChoice choose_output(const std::string& scene_output, const std::string* u
     }
     const Existing existing = what_is_at(choice.path);
     if (choice.named_by_user && existing == Existing::Folder && is_link(choice.path) &&
-        standard_output_closed() && standard_stream_is(1, choice.path)) {
+        standard_output_is_folder() && standard_stream_is(1, choice.path)) {
         choice.refusal = shown(choice.path, kMaxShownPath) +
                          " is standard output, which is closed (or a folder), expected a pipe or a file";
         return choice;

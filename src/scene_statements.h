@@ -4,7 +4,6 @@
 // reading of the text, line by line and in pieces, is parser.cpp's.
 #pragma once
 
-#include <algorithm>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -19,6 +18,7 @@
 namespace rt::statements_of_scenes {
 
 enum class Field { Name, Number, Count };
+// Left, Right, Bottom and Top in this order: SceneBuilder::window_side() numbers them so.
 enum class Keyword { Near, Left, Right, Bottom, Top, Res, Sphere, Light, Back, Ambient, Output };
 
 struct Statement {
@@ -154,11 +154,7 @@ public:
                 fail(line, "NEAR is " + as_written(f.raw[0], v[0]) + ", expected a distance greater than 0");
             scene.near_plane = v[0];
         } else if (kind == K::Left || kind == K::Right || kind == K::Bottom || kind == K::Top) {
-            window_side(kind == K::Left     ? 0
-                        : kind == K::Right  ? 1
-                        : kind == K::Bottom ? 2
-                                            : 3,
-                        v[0], f.raw[0], line);
+            window_side(static_cast<int>(kind) - static_cast<int>(K::Left), v[0], f.raw[0], line);
         } else if (kind == K::Res) {
             const long long columns = f.counts[0], rows = f.counts[1];
             if (columns > kMaxImageSide || rows > kMaxImageSide || columns * rows > kMaxImagePixels) {
