@@ -26,6 +26,7 @@ TEST(posix_faults_are_skipped_on_windows) { std::cout << "skip  faults: POSIX pr
 #include <random>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "raytracer/compiler.h"
@@ -587,28 +588,45 @@ TEST(a_symbolic_link_out_of_the_working_folder_is_outside_it) {
     CHECK(fs::exists(folder.work / "inside" / "out.ppm"));
 }
 
+// A pseudo-terminal: the program is given `terminal`, the test reads what it shows from
+// `master`.
+struct PseudoTerminal {
+    int master = posix_openpt(O_RDWR | O_NOCTTY);
+    int terminal = -1;
+
+    PseudoTerminal() {
+        CHECK(master >= 0 && grantpt(master) == 0 && unlockpt(master) == 0);
+        terminal = open(ptsname(master), O_RDWR | O_NOCTTY);
+        CHECK(terminal >= 0);
+    }
+    PseudoTerminal(const PseudoTerminal&) = delete;
+    PseudoTerminal& operator=(const PseudoTerminal&) = delete;
+    // Once the program alone holds it, reading `master` ends when the program does.
+    void close_terminal() { close(std::exchange(terminal, -1)); }
+    ~PseudoTerminal() {
+        if (terminal >= 0) close(terminal);
+        if (master >= 0) close(master);
+    }
+};
+
 // What a render of the slow scene on one thread shows on a pseudo-terminal of this many
 // columns (0: the size left unset), read until the render ends.
 std::string progress_on_terminal(const Scratch& folder, unsigned short columns) {
-    const int master = posix_openpt(O_RDWR | O_NOCTTY);
-    CHECK(master >= 0 && grantpt(master) == 0 && unlockpt(master) == 0);
-    const int terminal = open(ptsname(master), O_RDWR | O_NOCTTY);
-    CHECK(terminal >= 0);
+    PseudoTerminal pty;
     if (columns > 0) {
         winsize size{};
         size.ws_col = columns, size.ws_row = 24;
-        CHECK_EQ(ioctl(terminal, TIOCSWINSZ, &size), 0);
+        CHECK_EQ(ioctl(pty.terminal, TIOCSWINSZ, &size), 0);
     }
     Options options;
-    options.stderr_fd = terminal;
+    options.stderr_fd = pty.terminal;
     // One thread, so that the render takes seconds even on a faster machine.
     const pid_t pid = start(folder, {"--threads", "1", "slow.txt"}, options);
-    close(terminal);
+    pty.close_terminal();
     std::string shown;
     char buffer[4096];
-    for (ssize_t got; (got = read(master, buffer, sizeof buffer)) > 0;)
+    for (ssize_t got; (got = read(pty.master, buffer, sizeof buffer)) > 0;)
         shown.append(buffer, static_cast<std::size_t>(got));
-    close(master);
     CHECK_EQ(wait_for(pid), 0);
     CHECK_EQ(read_bytes(folder.work / "out.ppm").size(), std::size_t{17 + 3 * kSlowRes * kSlowRes});
     return shown;
@@ -619,26 +637,23 @@ std::string progress_on_terminal(const Scratch& folder, unsigned short columns) 
 TEST(standard_output_on_a_terminal_is_refused) {
     const Scratch folder;
     write_bytes(folder.work / "scene.txt", small_scene("out.ppm"));
-    const int master = posix_openpt(O_RDWR | O_NOCTTY);
-    CHECK(master >= 0 && grantpt(master) == 0 && unlockpt(master) == 0);
-    const int terminal = open(ptsname(master), O_RDWR | O_NOCTTY);
-    CHECK(terminal >= 0 && fcntl(master, F_SETFL, O_NONBLOCK) == 0);
+    const PseudoTerminal pty;
+    CHECK_EQ(fcntl(pty.master, F_SETFL, O_NONBLOCK), 0);
     Options on_terminal;
-    on_terminal.stdout_fd = terminal;
+    on_terminal.stdout_fd = pty.terminal;
     // The terminal drained meanwhile: were the image written there, the run would end
     // (and fail the check) rather than block on a full terminal.
     const pid_t pid = start(folder, {"-o", "-", "scene.txt"}, on_terminal);
     char buffer[4096];
     int status = 0;
     while (waitpid(pid, &status, WNOHANG) == 0) {
-        while (read(master, buffer, sizeof buffer) > 0) {
+        while (read(pty.master, buffer, sizeof buffer) > 0) {
         }
         std::this_thread::sleep_for(std::chrono::milliseconds(1));
     }
     CHECK(WIFEXITED(status) && WEXITSTATUS(status) == 3);
     CHECK(captured_stderr(folder).find("-o '-' is a terminal, expected a pipe or a file") !=
           std::string::npos);
-    close(terminal), close(master);
 }
 
 // On a terminal, a render past a second shows one line kept up to date, erased at the
