@@ -1,5 +1,6 @@
 #include "raytracer/interrupts.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <csignal>
@@ -32,11 +33,21 @@ char cleanup_path[kMaxPath];
 wchar_t cleanup_wide_path[kMaxPath];
 #endif
 std::atomic<int> cleanup_set{0};  // 1: cleanup_path, 2: cleanup_wide_path
-// "\r", as many spaces as the progress line has characters, "\r": a line is erased by
-// overwriting it, which every terminal and the Windows console understand (an ANSI
-// "erase line" is not understood by older consoles). Set before erase_line is raised.
-char erase_text[kMaxErasedLine + 3];
-std::atomic<int> erase_line{0};
+// The progress line's length (0: none). The handler erases the line by overwriting it:
+// "\r", that many spaces, "\r", which every terminal and the Windows console understand
+// (an ANSI "erase line" is not understood by older consoles). The spaces are a constant,
+// so a progress line redrawn on another thread while a handler writes them changes
+// nothing the handler reads but this one number.
+std::atomic<int> erase_length{0};
+struct Blanks {
+    char text[kMaxErasedLine];
+};
+constexpr Blanks make_blanks() {
+    Blanks blanks{};
+    for (char& c : blanks.text) c = ' ';
+    return blanks;
+}
+constexpr Blanks kBlanks = make_blanks();
 std::atomic<int> output_is_stream{0};
 // Who ends the run: kRunning until a handler takes kInterrupted (and exits) or
 // hold_interrupts() takes kHeld (the image is being put in place), whichever is first:
@@ -44,13 +55,14 @@ std::atomic<int> output_is_stream{0};
 enum Phase : int { kRunning, kHeld, kInterrupted };
 std::atomic<int> phase{kRunning};
 
-void say(const char* text) {
+void say(const char* text, std::size_t length) {
 #ifdef _WIN32
-    (void)_write(2, text, static_cast<unsigned>(std::strlen(text)));
+    (void)_write(2, text, static_cast<unsigned>(length));
 #else
-    (void)!write(2, text, std::strlen(text));
+    (void)!write(2, text, length);
 #endif
 }
+void say(const char* text) { say(text, std::strlen(text)); }
 
 extern "C" void render_on_interrupt(int signal_number) {
     int running = kRunning;
@@ -67,7 +79,8 @@ extern "C" void render_on_interrupt(int signal_number) {
 #else
     if (cleanup_set.load(std::memory_order_acquire) != 0) (void)unlink(cleanup_path);
 #endif
-    if (erase_line.load(std::memory_order_acquire) != 0) say(erase_text);
+    if (const int erase = erase_length.load(std::memory_order_relaxed); erase > 0)
+        say("\r"), say(kBlanks.text, static_cast<std::size_t>(erase)), say("\r");
     const char* name = "a signal";
     if (signal_number == SIGINT) name = "SIGINT";
     if (signal_number == SIGTERM) name = "SIGTERM";
@@ -139,14 +152,7 @@ bool set_interrupt_cleanup(const wchar_t* path) {
 #endif
 
 void set_interrupt_erases_line(int length) {
-    erase_line.store(0, std::memory_order_release);
-    if (length <= 0) return;
-    const auto n = static_cast<std::size_t>(length < kMaxErasedLine ? length : kMaxErasedLine);
-    erase_text[0] = '\r';
-    std::memset(erase_text + 1, ' ', n);
-    erase_text[n + 1] = '\r';
-    erase_text[n + 2] = '\0';
-    erase_line.store(1, std::memory_order_release);  // the text is complete before the flag
+    erase_length.store(std::clamp(length, 0, kMaxErasedLine), std::memory_order_relaxed);
 }
 
 void set_interrupt_output_is_stream(bool stream) {

@@ -279,6 +279,31 @@ TEST(an_interrupted_render_to_standard_output_says_the_image_is_incomplete) {
     CHECK_EQ(folder.names(), std::string("slow.txt"));
 }
 
+// Interrupted while the progress line is shown, the run first blanks the line as last
+// drawn ("\r", a space for each of its characters, "\r"), then says why it ends. Two
+// threads, so that the line is redrawn by whichever finishes rows, while the handler
+// runs on another (the ThreadSanitizer build checks that they share only a length).
+TEST(an_interrupt_blanks_the_progress_line_first) {
+    const Scratch folder;
+    write_bytes(folder.work / "slow.txt", slow_scene("out.ppm"));
+    const pid_t pid = start(folder, {"--threads", "2", "--progress", "slow.txt"});
+    for (int i = 0; i < 2000 && captured_stderr(folder).find(" elapsed, ") == std::string::npos; ++i)
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    kill(pid, SIGINT);
+    CHECK_EQ(wait_for(pid), 128 + SIGINT);
+    const std::string shown = captured_stderr(folder);
+    const std::string message = "raytracer.exe: error: interrupted by SIGINT, no image written\n";
+    CHECK(shown.size() > message.size() && shown.substr(shown.size() - message.size()) == message);
+    // Before the message: the last line drawn, "\r", at least as many blanks, "\r".
+    const std::string before = shown.substr(0, shown.size() - message.size());
+    const std::size_t blanks_from = before.find_last_not_of(' ', before.size() - 2) + 1;
+    const std::size_t line_from = before.rfind('\r', blanks_from - 2) + 1;
+    CHECK(before.back() == '\r' && before[blanks_from - 1] == '\r');
+    CHECK(before.size() - 1 - blanks_from >= blanks_from - 1 - line_from);
+    CHECK(before.substr(line_from, blanks_from - 1 - line_from).find("% of rows, ") != std::string::npos);
+    CHECK_EQ(folder.names(), std::string("slow.txt"));
+}
+
 #ifdef __linux__
 // The file is unnamed until complete (O_TMPFILE), so even SIGKILL leaves nothing.
 TEST(sigkill_mid_render_leaves_nothing_on_linux) {
