@@ -16,6 +16,12 @@
 #else
 #define RT_HELPERS_PINNED_START 0
 #endif
+#ifndef _WIN32
+#include <pthread.h>
+#include <signal.h>
+
+#include "raytracer/interrupts.h"
+#endif
 
 namespace rt {
 namespace {
@@ -110,6 +116,29 @@ bool make_helper(Pool& p) {
 }
 #endif
 
+#ifndef _WIN32
+// While one lives, this thread has the interrupts blocked, and every thread it starts
+// has them blocked for good: the handlers run on the main thread only (interrupts.h).
+class InterruptsBlocked {
+public:
+    InterruptsBlocked() {
+        sigset_t interrupts;
+        sigemptyset(&interrupts);
+        add_interrupt_signals(interrupts);
+        blocked_ = pthread_sigmask(SIG_BLOCK, &interrupts, &before_) == 0;
+    }
+    ~InterruptsBlocked() {
+        if (blocked_) (void)pthread_sigmask(SIG_SETMASK, &before_, nullptr);
+    }
+    InterruptsBlocked(const InterruptsBlocked&) = delete;
+    InterruptsBlocked& operator=(const InterruptsBlocked&) = delete;
+
+private:
+    sigset_t before_;
+    bool blocked_;
+};
+#endif
+
 }  // namespace
 
 unsigned available_cores() {
@@ -144,7 +173,12 @@ unsigned HelperPool::Job::start(unsigned helpers, Body body, void* context) {
     }
     p.wake.notify_all();  // the helpers made before
     // The helpers still missing see the open job as soon as they run.
-    while (p.threads < helpers && make_helper(p)) ++p.threads;
+    if (p.threads < helpers) {
+#ifndef _WIN32
+        const InterruptsBlocked in_new_helpers;
+#endif
+        while (p.threads < helpers && make_helper(p)) ++p.threads;
+    }
     return p.threads < helpers ? p.threads : helpers;
 }
 

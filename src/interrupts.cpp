@@ -24,8 +24,9 @@ namespace {
 // only unlink, write and _exit (and, on Windows, signal() to stay installed), which are
 // async-signal-safe. A path is copied into cleanup_path before cleanup_set is raised,
 // so the handler never sees half a path: the flags are lock-free atomics, stored with
-// release and loaded with acquire, as the handler may run on any thread (a render
-// thread), where a fence for signals alone would not order the path before the flag.
+// release and loaded with acquire, as the handler may run on another thread than the
+// one that sets them (on Windows a thread of its own; elsewhere the main thread, while a
+// helper writes), where a fence for signals alone would not order the path before the flag.
 static_assert(std::atomic<int>::is_always_lock_free, "a signal handler may use only lock-free atomics");
 constexpr std::size_t kMaxPath = 4096;
 char cleanup_path[kMaxPath];
@@ -54,6 +55,9 @@ std::atomic<int> output_is_stream{0};
 // one compare-exchange each, so that exactly one of them wins.
 enum Phase : int { kRunning, kHeld, kInterrupted };
 std::atomic<int> phase{kRunning};
+#ifndef _WIN32
+constexpr int kInterruptSignals[] = {SIGINT, SIGTERM, SIGHUP};
+#endif
 
 void say(const char* text, std::size_t length) {
 #ifdef _WIN32
@@ -108,8 +112,8 @@ void install_interrupt_handlers() {
     action.sa_flags = SA_RESTART;  // a handler may return (hold_interrupts()): no EINTR
     sigemptyset(&action.sa_mask);
     // One handler at a time: a second signal waits until the first has exited.
-    for (const int s : {SIGINT, SIGTERM, SIGHUP}) (void)sigaddset(&action.sa_mask, s);
-    for (const int s : {SIGINT, SIGTERM, SIGHUP}) {
+    add_interrupt_signals(action.sa_mask);
+    for (const int s : kInterruptSignals) {
         struct sigaction before {};
         if (sigaction(s, nullptr, &before) == 0 && before.sa_handler == SIG_IGN) continue;
         (void)sigaction(s, &action, nullptr);
@@ -117,6 +121,12 @@ void install_interrupt_handlers() {
     (void)std::signal(SIGXFSZ, SIG_IGN);
 #endif
 }
+
+#ifndef _WIN32
+void add_interrupt_signals(sigset_t& set) {
+    for (const int s : kInterruptSignals) (void)sigaddset(&set, s);
+}
+#endif
 
 void hold_interrupts() {
     int running = kRunning;

@@ -69,6 +69,7 @@ ProgressSink::ProgressSink(RowSink& inner, int total_rows, bool enabled)
 void ProgressSink::rows_finished(int count) {
     if (!enabled_) return;
     done_ = count;
+    if (std::this_thread::get_id() != drawer_) return;
     const auto now = std::chrono::steady_clock::now();
     if (now < next_draw_ || done_ >= total_) return;
     next_draw_ = now + kRedrawEvery;

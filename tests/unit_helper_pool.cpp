@@ -7,6 +7,11 @@
 #include <thread>
 #include <vector>
 
+#ifndef _WIN32
+#include <pthread.h>
+#include <signal.h>
+#endif
+
 #include "check.h"
 #include "raytracer/helper_pool.h"
 
@@ -95,6 +100,37 @@ TEST(one_job_at_a_time) {
     c.finish();
     CHECK_EQ(c.start(0, body, &second), 0U);  // nothing asked, nothing started
 }
+
+#ifndef _WIN32
+// The helpers never take an interrupt (interrupts.h): its handler runs on the thread that
+// draws the progress line. The starting thread's own mask is as it was.
+TEST(helpers_start_with_the_interrupts_blocked) {
+    struct Masks {
+        std::atomic<int> blocked{0}, calls{0};
+    } masks;
+    auto record = [](void* context, unsigned) {
+        Masks& m = *static_cast<Masks*>(context);
+        sigset_t now;
+        CHECK_EQ(pthread_sigmask(SIG_BLOCK, nullptr, &now), 0);
+        if (sigismember(&now, SIGINT) == 1 && sigismember(&now, SIGTERM) == 1 &&
+            sigismember(&now, SIGHUP) == 1)
+            ++m.blocked;
+        ++m.calls;
+    };
+    rt::HelperPool::Job job;
+    const unsigned started = job.start(5, record, &masks);
+    const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+    while (masks.calls.load() < static_cast<int>(started) && std::chrono::steady_clock::now() < until)
+        std::this_thread::yield();
+    job.finish();
+    CHECK(started >= 1U);
+    CHECK_EQ(masks.calls.load(), static_cast<int>(started));
+    CHECK_EQ(masks.blocked.load(), masks.calls.load());
+    sigset_t here;
+    CHECK_EQ(pthread_sigmask(SIG_BLOCK, nullptr, &here), 0);
+    CHECK_EQ(sigismember(&here, SIGINT), 0);
+}
+#endif
 
 // Last in this file: retire() is for the rest of the process.
 TEST(retired_helpers_end_and_later_jobs_run_alone) {

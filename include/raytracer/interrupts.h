@@ -7,10 +7,22 @@
 // silently.
 #pragma once
 
+#ifndef _WIN32
+#include <signal.h>
+#endif
+
 namespace rt {
 
 // Installs the handlers; call once, before the scene is read.
 void install_interrupt_handlers();
+#ifndef _WIN32
+// The signals the handlers take (SIGINT, SIGTERM, SIGHUP), added to set. The helper
+// threads start with them blocked (helper_pool.cpp), so that a handler runs on the main
+// thread only, the one that draws the progress line (progress.cpp): never beside a
+// redraw, and no line is drawn after its message. (Windows runs a console's handler on
+// a thread of its own.)
+void add_interrupt_signals(sigset_t& set);
+#endif
 
 // The image is about to be put in place (PendingFile::commit()): from this call on, an
 // interrupt is ignored, since its handler would otherwise run after the image is in

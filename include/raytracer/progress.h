@@ -1,15 +1,18 @@
 // A progress line for long renders: when stderr is a terminal and the render has run
 // past a second, one line kept up to date (percent of rows, elapsed, estimate left),
 // cut to the terminal's width so that it never wraps, erased at the end. A RowSink in
-// front of the real one, told of finished rows on the thread that writes (row_ring.h):
-// one clock reading per call, a redraw at most four times a second, no locks, no thread
-// of its own.
+// front of the real one, told of finished rows on the thread that writes (row_ring.h),
+// under its lock, and drawn only on the thread that made it: the main thread, the one
+// the interrupt handlers run on (interrupts.h), so that a handler never runs beside a
+// redraw. One clock reading per call, a redraw at most four times a second, no locks,
+// no thread of its own.
 #pragma once
 
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
+#include <thread>
 
 #include "raytracer/row_sink.h"
 
@@ -41,6 +44,8 @@ private:
     const bool enabled_;
     int width_ = 0;  // the longest line that fits the terminal
     int drawn_ = 0;  // the length of the line on the terminal; 0: none
+    // The thread that made it, the only one that draws.
+    std::thread::id drawer_ = std::this_thread::get_id();
     std::chrono::steady_clock::time_point start_, next_draw_;
 };
 
