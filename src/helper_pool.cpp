@@ -2,25 +2,24 @@
 
 #include <atomic>
 #include <condition_variable>
+#include <csignal>
 #include <cstdint>
 #include <mutex>
 #include <system_error>
 #include <thread>
 
+#include "raytracer/interrupts.h"
+
 // Linux with glibc: pthreads with an affinity attribute. Everything else, MinGW and
 // MSVC included: std::thread, started wherever the system puts it.
 #if defined(__linux__) && defined(__GLIBC__)
 #define RT_HELPERS_PINNED_START 1
-#include <pthread.h>
 #include <sched.h>
 #else
 #define RT_HELPERS_PINNED_START 0
 #endif
 #ifndef _WIN32
 #include <pthread.h>
-#include <signal.h>
-
-#include "raytracer/interrupts.h"
 #endif
 
 namespace rt {

@@ -32,6 +32,14 @@
 #define RT_UNDER_ASAN 1
 #endif
 #endif
+// Likewise for ThreadSanitizer, which maps terabytes too, and runs a thread of its own.
+#if defined(__SANITIZE_THREAD__)
+#define RT_UNDER_TSAN 1
+#elif defined(__has_feature)
+#if __has_feature(thread_sanitizer)
+#define RT_UNDER_TSAN 1
+#endif
+#endif
 
 // Whether Lanes (lanes.h) are held as native 32-byte vectors: where the compiler has
 // vector extensions (GCC, Clang) and the target AVX.

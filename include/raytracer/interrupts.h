@@ -8,7 +8,7 @@
 #pragma once
 
 #ifndef _WIN32
-#include <signal.h>
+#include <csignal>
 #endif
 
 namespace rt {
