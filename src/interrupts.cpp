@@ -83,8 +83,11 @@ extern "C" void render_on_interrupt(int signal_number) {
 #else
     if (cleanup_set.load(std::memory_order_acquire) != 0) (void)unlink(cleanup_path);
 #endif
-    if (const int erase = erase_length.load(std::memory_order_relaxed); erase > 0)
-        say("\r"), say(kBlanks.text, static_cast<std::size_t>(erase)), say("\r");
+    if (const int erase = erase_length.load(std::memory_order_relaxed); erase > 0) {
+        say("\r");
+        say(kBlanks.text, static_cast<std::size_t>(erase));
+        say("\r");
+    }
     const char* name = "a signal";
     if (signal_number == SIGINT) name = "SIGINT";
     if (signal_number == SIGTERM) name = "SIGTERM";

@@ -96,14 +96,14 @@ std::size_t slow_image_bytes() {
     const std::string side = std::to_string(kSlowRes);
     return ("P6\n" + side + " " + side + "\n255\n").size() + std::size_t{3} * kSlowRes * kSlowRes;
 }
-std::string slow_scene(const std::string& output) {
+std::string slow_scene(const std::string& output, int res = kSlowRes) {
     std::minstd_rand random(12345);
     auto u = [&random](double lo, double hi) {
         return lo + (hi - lo) * static_cast<double>(random()) / static_cast<double>(std::minstd_rand::max());
     };
-    std::string text = "NEAR 1\nLEFT -1\nRIGHT 1\nBOTTOM -1\nTOP 1\nRES " + std::to_string(kSlowRes) + " " +
-                       std::to_string(kSlowRes) + "\nBACK 0.1 0.1 0.1\nAMBIENT 0.2 0.2 0.2\nOUTPUT " +
-                       output + "\n";
+    std::string text = "NEAR 1\nLEFT -1\nRIGHT 1\nBOTTOM -1\nTOP 1\nRES " + std::to_string(res) + " " +
+                       std::to_string(res) + "\nBACK 0.1 0.1 0.1\nAMBIENT 0.2 0.2 0.2\nOUTPUT " + output +
+                       "\n";
     for (int i = 0; i < 200; ++i)
         text += "SPHERE s" + std::to_string(i) + " " + std::to_string(u(-4, 4)) + " " +
                 std::to_string(u(-4, 4)) + " " + std::to_string(u(-12, -5)) +
@@ -290,12 +290,13 @@ TEST(an_interrupted_render_to_standard_output_says_the_image_is_incomplete) {
 }
 
 // Interrupted while the progress line is shown, the run first blanks the line as last
-// drawn ("\r", a space for each of its characters, "\r"), then says why it ends. Two
-// threads, so that the line is redrawn by whichever finishes rows, while the handler
-// runs on another (the ThreadSanitizer build checks that they share only a length).
+// drawn ("\r", a space for each of its characters, "\r"), then says why it ends, and
+// nothing after. Two threads, so that a helper renders while the line is drawn (the
+// ThreadSanitizer build checks what they share); the scene 9 times the slow one's
+// pixels, so that the line, first drawn after a second, shows on a faster machine too.
 TEST(an_interrupt_blanks_the_progress_line_first) {
     const Scratch folder;
-    write_bytes(folder.work / "slow.txt", slow_scene("out.ppm"));
+    write_bytes(folder.work / "slow.txt", slow_scene("out.ppm", 3 * kSlowRes));
     const pid_t pid = start(folder, {"--threads", "2", "--progress", "slow.txt"});
     for (int i = 0; i < 2000 && captured_stderr(folder).find(" elapsed, ") == std::string::npos; ++i)
         std::this_thread::sleep_for(std::chrono::milliseconds(5));
