@@ -41,11 +41,12 @@ std::atomic<int> cleanup_set{0};  // 1: cleanup_path, 2: cleanup_wide_path
 // nothing the handler reads but this one number.
 std::atomic<int> erase_length{0};
 struct Blanks {
-    char text[kMaxErasedLine];
+    char text[1 + kMaxErasedLine];  // "\r" and the spaces
 };
 constexpr Blanks make_blanks() {
     Blanks blanks{};
     for (char& c : blanks.text) c = ' ';
+    blanks.text[0] = '\r';
     return blanks;
 }
 constexpr Blanks kBlanks = make_blanks();
@@ -84,8 +85,7 @@ extern "C" void render_on_interrupt(int signal_number) {
     if (cleanup_set.load(std::memory_order_acquire) != 0) (void)unlink(cleanup_path);
 #endif
     if (const int erase = erase_length.load(std::memory_order_relaxed); erase > 0) {
-        say("\r");
-        say(kBlanks.text, static_cast<std::size_t>(erase));
+        say(kBlanks.text, 1 + static_cast<std::size_t>(erase));
         say("\r");
     }
     const char* name = "a signal";

@@ -1,11 +1,12 @@
 // A progress line for long renders: when stderr is a terminal and the render has run
 // past a second, one line kept up to date (percent of rows, elapsed, estimate left),
 // cut to the terminal's width so that it never wraps, erased at the end. A RowSink in
-// front of the real one, told of finished rows on the thread that writes (row_ring.h),
-// under its lock, and drawn only on the thread that made it: the main thread, the one
-// the interrupt handlers run on (interrupts.h), so that a handler never runs beside a
-// redraw. One clock reading per call, a redraw at most four times a second, no locks,
-// no thread of its own.
+// front of the real one, told of finished rows by the thread that writes them, under the
+// row ring's lock (row_ring.h), and drawn only when that is the thread that made it: the
+// main thread, which the interrupt handlers run on (interrupts.h; not on Windows), so
+// that a handler never runs beside a redraw. So the line moves when the main thread
+// hands rows over, about once a band of rows of its own. One clock reading per call, a
+// redraw at most four times a second, no lock and no thread of its own.
 #pragma once
 
 #include <chrono>
