@@ -359,7 +359,7 @@ TEST(a_file_size_limit_is_a_failed_write) {
 }
 
 // The sanitizers reserve terabytes of address space: no limit can be set under them.
-#if !defined(RT_UNDER_ASAN) && !defined(RT_UNDER_TSAN)
+#ifndef RT_SANITIZER_MAPS_TERABYTES
 // Memory runs out for 100,000 ellipsoids on a tiny image (the scene is read; the tree
 // and its copy of the ellipsoids do not fit): the message names the scene's size, not
 // "a smaller RES", and nothing is written.

@@ -527,7 +527,7 @@ TEST(a_large_file_reads_as_its_text) {
 // A file whose sphere list cannot be had is out of memory, not "empty": its pieces ran out
 // before their first token. The address space is held to a few MiB above what the process
 // maps (Linux; the sanitizers map terabytes), on one thread (no helper's stack to map).
-#if defined(__linux__) && !defined(RT_UNDER_ASAN) && !defined(RT_UNDER_TSAN)
+#if defined(__linux__) && !defined(RT_SANITIZER_MAPS_TERABYTES)
 TEST(a_file_read_out_of_memory_is_not_empty) {
     // Its list would take about 45 MB: more than earlier tests can have left free in the heap.
     const std::string text = joined(many_lines(260000));

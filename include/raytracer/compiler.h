@@ -40,6 +40,10 @@
 #define RT_UNDER_TSAN 1
 #endif
 #endif
+// Under either, no address-space limit (RLIMIT_AS) can be set: they map terabytes.
+#if defined(RT_UNDER_ASAN) || defined(RT_UNDER_TSAN)
+#define RT_SANITIZER_MAPS_TERABYTES 1
+#endif
 
 // Whether Lanes (lanes.h) are held as native 32-byte vectors: where the compiler has
 // vector extensions (GCC, Clang) and the target AVX.
