@@ -174,12 +174,11 @@ public:
                 }
             }
             SphereSpec& s = scene.spheres.emplace_back();
-            s.name = f.names[0];
             s.centre = {v[0], v[1], v[2]}, s.scale = {v[3], v[4], v[5]}, s.colour = {v[6], v[7], v[8]};
             s.ka = v[9], s.kd = v[10], s.ks = v[11], s.kr = v[12], s.shininess = v[13];
             s.line = line;
         } else if (kind == K::Light) {
-            scene.lights.push_back({std::string(f.names[0]), {v[0], v[1], v[2]}, {v[3], v[4], v[5]}, line});
+            scene.lights.push_back({{v[0], v[1], v[2]}, {v[3], v[4], v[5]}, line});
         } else if (kind == K::Back) {
             scene.background = {v[0], v[1], v[2]};
         } else if (kind == K::Ambient) {

@@ -40,7 +40,7 @@ rt::Scene scene(V ambient, V background = {0.25, 0.5, 0.75}) {
     return s;
 }
 
-void light(rt::Scene& s, V position, V intensity) { s.lights.push_back({"l", position, intensity, 0}); }
+void light(rt::Scene& s, V position, V intensity) { s.lights.push_back({position, intensity, 0}); }
 
 // The reference's colour along an eye ray (whitted.h: what every path's bytes are held to).
 V trace(const rt::Scene& s, V direction) {

@@ -1,5 +1,6 @@
 // The scene as the file describes it: plain data, filled by the parser, read by the
-// renderer. Numbers are kept in double whatever precision the renderer uses.
+// renderer. Numbers are kept in double whatever precision the renderer uses. The names
+// of spheres and lights are checked by the parser, not kept: nothing shows them.
 #pragma once
 
 #include <string>
@@ -13,7 +14,6 @@ namespace rt {
 using Colour = Vec3<double>;  // r, g, b as x, y, z
 
 struct SphereSpec {
-    std::string name;
     Vec3<double> centre;
     Vec3<double> scale;  // the unit sphere is scaled by this, then moved to centre
     Colour colour;
@@ -23,7 +23,6 @@ struct SphereSpec {
 };
 
 struct LightSpec {
-    std::string name;
     Vec3<double> position;
     Colour intensity;
     int line = 0;
@@ -32,7 +31,7 @@ struct LightSpec {
 struct Scene {
     double near_plane = 0, left = 0, right = 0, bottom = 0, top = 0;
     int columns = 0, rows = 0;
-    LargeVector<SphereSpec> spheres;  // 100,000 take 15 MB
+    LargeVector<SphereSpec> spheres;  // 100,000 take 12 MB
     std::vector<LightSpec> lights;
     Colour background;
     Colour ambient;

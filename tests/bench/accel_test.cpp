@@ -325,7 +325,6 @@ rt::Scene camera_on_a_surface() {
     s.columns = 3, s.rows = 3;  // column 1: x = -0.1 + 0.30000000000000004 / 3 = 1.4e-17
     s.background = {0, 0, 0}, s.ambient = {1, 1, 1};
     rt::SphereSpec skin;
-    skin.name = "skin";
     skin.centre = {0.3, 0, 0};
     skin.scale = {0.29999999999999993, 0.25, 0.25};  // 0.3 less 2 ulps
     skin.colour = {1, 1, 1}, skin.ka = 1;
@@ -333,13 +332,11 @@ rt::Scene camera_on_a_surface() {
     while (s.spheres.size() <= rt::kFlatSweepEllipsoids) {  // behind the camera: the tree's path
         rt::SphereSpec far = skin;
         const auto k = static_cast<double>(s.spheres.size());
-        far.name = "far";
         far.centre = {std::fmod(k, 10) - 5, std::floor(k / 10) - 3, 40};
         far.scale = {0.1, 0.1, 0.1};
         s.spheres.push_back(far);
     }
     rt::LightSpec light;
-    light.name = "light";
     light.intensity = {1, 1, 1};
     s.lights.push_back(light);
     return s;
@@ -390,14 +387,12 @@ void add_ambient_spheres(rt::Scene& s, double scale, CentreOf centre_of) {
     s.background = {0, 0, 0}, s.ambient = {1, 1, 1};
     for (int i = 0; i < 70; ++i) {
         rt::SphereSpec e;
-        e.name = "e" + std::to_string(i);
         e.centre = centre_of(i);
         e.scale = {scale, scale, scale};
         e.colour = {i / 70.0, 1, 1}, e.ka = 1;
         s.spheres.push_back(e);
     }
     rt::LightSpec light;
-    light.name = "light";
     light.intensity = {1, 1, 1};
     s.lights.push_back(light);
 }
@@ -712,7 +707,6 @@ TEST(thin_discs_far_away_are_culled_and_render_as_the_reference) {
     s.spheres.resize(250, s.spheres.front());
     for (std::size_t i = 0; i < s.spheres.size(); ++i) {
         rt::SphereSpec& e = s.spheres[i];
-        e.name = "disc" + std::to_string(i);
         e.centre = {uniform(g, -8, 8), uniform(g, -8, 8), uniform(g, -30, -10)};
         e.scale = {0.3, 0.3, 0.3};
         (i % 3 == 0 ? e.scale.x : i % 3 == 1 ? e.scale.y : e.scale.z) = 1e-9;

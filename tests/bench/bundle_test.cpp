@@ -228,8 +228,7 @@ template <typename Real>
 int shell_lanes_differing(Crowd<Real> c, unsigned seed, int bundles, long& skipped) {
     using V = rt::Vec3<Real>;
     std::mt19937 g(seed);
-    c.all.push_back(
-        rt::make_ellipsoid<Real>(rt::SphereSpec{"room", {0, 0, -6}, {9, 8, 11}, {}, 0, 0, 0, 0.8, 1, 0}));
+    c.all.push_back(rt::make_ellipsoid<Real>(rt::SphereSpec{{0, 0, -6}, {9, 8, 11}, {}, 0, 0, 0, 0.8, 1, 0}));
     const rt::Ellipsoid<Real>& room = c.all.back();
     for (const double radius : {0.3, 0.9995, 0.999, 1.0, 1.0005, 1.01})  // in units of the room's scales
         for (int i = 0; i < 3; ++i)
@@ -404,7 +403,7 @@ TEST(bvh_eye_blocks_break_ties_as_brute_force) {
 // at opposite zeros of its unit space, where the root solver may take a zero's sign.
 TEST(bvh_closest_bundles_from_0_and_minus_0_match_brute_force) {
     for (unsigned seed = 1; seed <= 4; ++seed) {
-        const rt::SphereSpec room{"room", {0, 0, 0}, {7, 5, 9}, {}, 0, 0, 0, 0.5, 1, 0};
+        const rt::SphereSpec room{{0, 0, 0}, {7, 5, 9}, {}, 0, 0, 0, 0.5, 1, 0};
         Crowd<float> f = crowd<float>(seed, 100);
         f.all.insert(f.all.begin(), rt::make_ellipsoid<float>(room));
         CHECK_EQ(closest_lanes_differing(f, seed, 400), 0);

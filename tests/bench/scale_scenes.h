@@ -29,7 +29,6 @@ inline rt::Scene empty_scene(const std::string& output) {
 inline rt::SphereSpec sphere(const rt::Vec3<double>& centre, const rt::Vec3<double>& scale,
                              const rt::Colour& colour, double kr) {
     rt::SphereSpec e;
-    e.name = "s";
     e.centre = centre, e.scale = scale, e.colour = colour;
     e.ka = 0.2, e.kd = 0.6, e.ks = 0.4, e.kr = kr, e.shininess = 20;
     return e;
@@ -79,7 +78,6 @@ inline rt::Scene sphereflake(int level) {
     const double positions[3][3] = {{-4, 5, 2}, {5, 3, 0}, {0, 6, -8}};
     for (const auto& p : positions) {
         rt::LightSpec l;
-        l.name = "l";
         l.position = {p[0], p[1], p[2]};
         l.intensity = {0.5, 0.5, 0.5};
         s.lights.push_back(l);
@@ -105,7 +103,6 @@ inline rt::Scene random_ellipsoids(int n, unsigned seed = 1) {
     }
     for (int i = 0; i < 10; ++i) {
         rt::LightSpec l;
-        l.name = "l";
         l.position = {uniform(-8, 8), uniform(-8, 8), uniform(-20, 4)};
         l.intensity = {0.15, 0.15, 0.15};
         s.lights.push_back(l);
