@@ -179,9 +179,10 @@ int main(int argc, char** argv) {
                          shown_file.c_str());
         } else {
             std::fprintf(stderr,
-                         "raytracer.exe: error: out of memory rendering %s (RES %d %d, %zu ellipsoids, %zu "
-                         "lights), expected a smaller scene\n",
-                         shown_file.c_str(), size.columns, size.rows, size.ellipsoids, size.lights);
+                         "raytracer.exe: error: out of memory rendering %s (RES %d %d, %zu ellipsoid%s, %zu "
+                         "light%s), expected a smaller scene\n",
+                         shown_file.c_str(), size.columns, size.rows, size.ellipsoids,
+                         size.ellipsoids == 1 ? "" : "s", size.lights, size.lights == 1 ? "" : "s");
         }
         return kOutOfMemory;
     } catch (const std::exception& e) {

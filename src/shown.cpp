@@ -23,7 +23,7 @@ void append_escaped(std::string& out, std::string_view text, std::size_t most) {
 std::string escaped(std::string_view text, std::size_t most) {
     std::string out;
     append_escaped(out, text, most);
-    if (text.size() > most) out += "... (" + std::to_string(text.size()) + " characters)";
+    if (text.size() > most) out += "... (" + std::to_string(text.size()) + " bytes)";
     return out;
 }
 
@@ -31,7 +31,7 @@ std::string shown(std::string_view text, std::size_t most) {
     std::string out = "'";
     append_escaped(out, text, most);
     if (text.size() > most)
-        out += "...' (" + std::to_string(text.size()) + " characters)";
+        out += "...' (" + std::to_string(text.size()) + " bytes)";
     else
         out += "'";
     return out;

@@ -206,9 +206,8 @@ int main(int argc, char** argv) {
 
     const std::string long_token = (scratch / "long-token.txt").string();
     write_file(long_token, std::string(200'000, 'A') + "\n");
-    run_case(
-        raytracer, scratch,
-        {"200KB-token", {long_token}, {"", 1, 1, "...' (200000 characters), expected one of"}, long_token});
+    run_case(raytracer, scratch,
+             {"200KB-token", {long_token}, {"", 1, 1, "...' (200000 bytes), expected one of"}, long_token});
     const std::string long_number = (scratch / "long-number.txt").string();
     write_file(long_number,
                "NEAR " + std::string(200'000, '9') + "\n" + good_text.substr(good_text.find('\n') + 1));

@@ -249,7 +249,7 @@ TEST(paths_in_messages_are_escaped_and_cut) {
     const Run r = run(folder, {"scene.txt"});
     CHECK_EQ(r.status, 3);
     CHECK(contains(r.err, "OUTPUT '\\x1b]0;title\\x07/xxx"));
-    CHECK(contains(r.err, "(5011 characters)"));
+    CHECK(contains(r.err, "(5011 bytes)"));
     CHECK(r.err.find('\x1b') == std::string::npos);
     CHECK(r.err.size() < 600);
 #ifndef _WIN32  // cmd.exe cannot pass a control byte

@@ -14,10 +14,11 @@ namespace rt {
 inline constexpr std::size_t kMaxShownToken = 40;
 inline constexpr std::size_t kMaxShownPath = 160;
 
-// Escaped and cut, without quotes: "...' (N characters)" marks a cut only in shown().
+// Escaped and cut, without quotes: the text, or "first bytes... (N bytes)". A byte
+// outside printable ASCII shows as \xNN, so a cut may fall inside a UTF-8 character.
 std::string escaped(std::string_view text, std::size_t most = kMaxShownPath);
 
-// Quoted, escaped and cut: 'text', or 'first bytes...' (N characters).
+// Quoted, escaped and cut: 'text', or 'first bytes...' (N bytes).
 std::string shown(std::string_view text, std::size_t most = kMaxShownToken);
 
 }  // namespace rt
