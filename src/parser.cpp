@@ -207,12 +207,11 @@ Scene merge(std::vector<Piece>& pieces, const std::string& file_name) {
                 all.scene.spheres = std::move(s.spheres), all.scene.lights = std::move(s.lights);
             } else {
                 for (std::size_t i = p.spheres_from; i < p.spheres_to; ++i) {
-                    all.scene.spheres.push_back(std::move((*p.spheres)[i]));
+                    all.scene.spheres.push_back((*p.spheres)[i]);
                     all.scene.spheres.back().line += offset;
                 }
                 if (last_of_list[k]) LargeVector<SphereSpec>().swap(*p.spheres);
-                for (LightSpec& light : s.lights)
-                    light.line += offset, all.scene.lights.push_back(std::move(light));
+                for (LightSpec light : s.lights) light.line += offset, all.scene.lights.push_back(light);
             }
             offset += p.lines;
         }
