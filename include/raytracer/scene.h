@@ -1,6 +1,6 @@
 // The scene as the file describes it: plain data, filled by the parser, read by the
 // renderer. Numbers are kept in double whatever precision the renderer uses. The names
-// of spheres and lights are checked by the parser, not kept: nothing shows them.
+// of spheres and lights are read by the parser (its messages show them), not kept.
 #pragma once
 
 #include <string>
