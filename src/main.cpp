@@ -178,11 +178,13 @@ int main(int argc, char** argv) {
                          "raytracer.exe: error: out of memory reading %s, expected a smaller scene file\n",
                          shown_file.c_str());
         } else {
-            std::fprintf(stderr,
-                         "raytracer.exe: error: out of memory rendering %s (RES %d %d, %zu ellipsoid%s, %zu "
-                         "light%s), expected a smaller scene\n",
-                         shown_file.c_str(), size.columns, size.rows, size.ellipsoids,
-                         size.ellipsoids == 1 ? "" : "s", size.lights, size.lights == 1 ? "" : "s");
+            std::fprintf(
+                stderr,
+                "raytracer.exe: error: out of memory rendering %s (RES %d %d, %s, %s), expected a "
+                "smaller scene\n",
+                shown_file.c_str(), size.columns, size.rows,
+                rt::plural(static_cast<long long>(size.ellipsoids), "ellipsoid", "ellipsoids").c_str(),
+                rt::plural(static_cast<long long>(size.lights), "light", "lights").c_str());
         }
         return kOutOfMemory;
     } catch (const std::exception& e) {

@@ -103,9 +103,9 @@ public:
         const std::size_t given = tokens.count - 1;
         const std::size_t wanted = found.field_names.size();
         if (given != wanted) {
-            fail(line, std::string(found.keyword) + " has " + std::to_string(given) + " field" +
-                           (given == 1 ? "" : "s") + ", expected " + std::to_string(wanted) + ": " +
-                           usage_of(found));
+            fail(line, std::string(found.keyword) + " has " +
+                           plural(static_cast<long long>(given), "field", "fields") + ", expected " +
+                           std::to_string(wanted) + ": " + usage_of(found));
         }
 
         const std::size_t index = static_cast<std::size_t>(&found - statements().data());

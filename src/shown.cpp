@@ -37,4 +37,8 @@ std::string shown(std::string_view text, std::size_t most) {
     return out;
 }
 
+std::string plural(long long count, const char* one, const char* many) {
+    return std::to_string(count) + " " + (count == 1 ? one : many);
+}
+
 }  // namespace rt

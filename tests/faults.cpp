@@ -374,8 +374,7 @@ TEST(out_of_memory_names_the_scene_size) {
     write_bytes(folder.work / "oom.txt", scene);
     Options options;
     // Reading takes 36-52 MB of address space (its sphere lists in whole 2 MiB pages, a
-    // thread's heap arena), the render 62-72 MB (2 threads, 2026-12-06: reading fitted
-    // in 46 MB, and the render in 66 MB, not in 62).
+    // thread's heap arena), the render 62-72 MB.
     options.address_space_limit = 56L << 20;
     CHECK_EQ(run(folder, {"oom.txt"}, options), 4);
     CHECK_EQ(captured_stderr(folder),

@@ -1,7 +1,7 @@
 // Text from outside (tokens, file names, paths) as it may appear in a one-line message:
 // control and non-ASCII bytes escaped as \xNN, so that a scene cannot reach the terminal
 // with escape sequences, and long values cut, so that a 1 MB name still gives one short
-// line.
+// line; and counts with their nouns.
 #pragma once
 
 #include <cstddef>
@@ -20,5 +20,8 @@ std::string escaped(std::string_view text, std::size_t most = kMaxShownPath);
 
 // Quoted, escaped and cut: 'text', or 'first bytes...' (N bytes).
 std::string shown(std::string_view text, std::size_t most = kMaxShownToken);
+
+// A count and its noun: "1 light", "2 lights" (plural(n, "light", "lights")).
+std::string plural(long long count, const char* one, const char* many);
 
 }  // namespace rt

@@ -2,12 +2,12 @@
 
 #include <cstdio>
 
+#include "raytracer/shown.h"
+
 namespace grade {
 namespace {
 
-std::string plural(long long count, const char* one, const char* many) {
-    return std::to_string(count) + " " + (count == 1 ? one : many);
-}
+using rt::plural;
 
 std::string rgb(const std::uint8_t (&c)[3]) {
     return std::to_string(c[0]) + " " + std::to_string(c[1]) + " " + std::to_string(c[2]);
