@@ -1,15 +1,24 @@
 #include "raytracer/shown.h"
 
+#include <algorithm>
+
 namespace rt {
 
 namespace {
 
+bool printable(unsigned char c) { return c >= 0x20 && c < 0x7f; }
+
 void append_escaped(std::string& out, std::string_view text, std::size_t most) {
     static const char* const hex = "0123456789abcdef";
-    for (std::size_t i = 0; i < text.size() && i < most; ++i) {
-        const auto c = static_cast<unsigned char>(text[i]);
-        if (c >= 0x20 && c < 0x7f) {
-            out += static_cast<char>(c);
+    text = text.substr(0, most);
+    const bool escapes = std::any_of(text.begin(), text.end(),
+                                     [](char c) { return !printable(static_cast<unsigned char>(c)); });
+    for (const char byte : text) {
+        const auto c = static_cast<unsigned char>(byte);
+        if (c == '\\' && escapes) {
+            out += "\\\\";
+        } else if (printable(c)) {
+            out += byte;
         } else {
             out += "\\x";
             out += hex[c >> 4];

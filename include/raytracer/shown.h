@@ -16,6 +16,9 @@ inline constexpr std::size_t kMaxShownPath = 160;
 
 // Escaped and cut, without quotes: the text, or "first bytes... (N bytes)". A byte
 // outside printable ASCII shows as \xNN, so a cut may fall inside a UTF-8 character.
+// In text with such a byte a backslash shows as \\, so that a name written "\x1b" and
+// one holding an ESC byte read apart; text without one shows as it is (a Windows path
+// keeps its single backslashes).
 std::string escaped(std::string_view text, std::size_t most = kMaxShownPath);
 
 // Quoted, escaped and cut: 'text', or 'first bytes...' (N bytes).
