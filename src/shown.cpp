@@ -1,7 +1,5 @@
 #include "raytracer/shown.h"
 
-#include <algorithm>
-
 namespace rt {
 
 namespace {
@@ -11,14 +9,11 @@ bool printable(unsigned char c) { return c >= 0x20 && c < 0x7f; }
 void append_escaped(std::string& out, std::string_view text, std::size_t most) {
     static const char* const hex = "0123456789abcdef";
     text = text.substr(0, most);
-    const bool escapes = std::any_of(text.begin(), text.end(),
-                                     [](char c) { return !printable(static_cast<unsigned char>(c)); });
-    for (const char byte : text) {
-        const auto c = static_cast<unsigned char>(byte);
-        if (c == '\\' && escapes) {
-            out += "\\\\";
-        } else if (printable(c)) {
-            out += byte;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const auto c = static_cast<unsigned char>(text[i]);
+        const bool reads_as_escape = c == '\\' && i + 1 < text.size() && text[i + 1] == 'x';
+        if (printable(c) && !reads_as_escape) {
+            out += text[i];
         } else {
             out += "\\x";
             out += hex[c >> 4];

@@ -258,12 +258,12 @@ TEST(paths_in_messages_are_escaped_and_cut) {
     CHECK(contains(missing.err, "no\\x01such-yyy"));
     CHECK(missing.err.size() < 600);
 #endif
-    // A backslash is doubled where bytes are escaped, so that the text "\x1b" and an ESC
-    // byte read apart, and left single elsewhere.
-    write_bytes(folder / "scene.txt", empty_scene("a\\x1b\x1b/"));
-    CHECK(contains(run(folder, {"scene.txt"}).err, "OUTPUT 'a\\\\x1b\\x1b/'"));
-    write_bytes(folder / "scene.txt", empty_scene("a\\b/"));
-    CHECK(contains(run(folder, {"scene.txt"}).err, "OUTPUT 'a\\b/'"));
+    // Every \x shown starts an escape: a backslash before an x is escaped too, so that the
+    // text "\x1b" and an ESC byte read apart; other backslashes show as they are.
+    write_bytes(folder / "scene.txt", empty_scene("a\\x1b/"));
+    CHECK(contains(run(folder, {"scene.txt"}).err, "OUTPUT 'a\\x5cx1b/'"));
+    write_bytes(folder / "scene.txt", empty_scene("a\\\x1b\\b/"));
+    CHECK(contains(run(folder, {"scene.txt"}).err, "OUTPUT 'a\\\\x1b\\b/'"));
 }
 
 // --reference renders through the reference path (every ray against every ellipsoid):
