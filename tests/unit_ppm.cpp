@@ -6,6 +6,10 @@
 #include <random>
 #include <string>
 
+#ifdef _WIN32
+#include <io.h>  // _wunlink
+#endif
+
 #include "check.h"
 #include "image_diff.h"
 #include "raytracer/image.h"
@@ -118,6 +122,29 @@ TEST(a_pending_file_appears_only_when_committed) {
     CHECK(!rt::save_imageP6(unwritable, 2, 2, kPixels).empty());
     CHECK_EQ(dir.entries(), 1U);
 }
+
+#ifdef _WIN32
+// An interrupt removes the temporary while the render still holds it open (the console's
+// handler runs on a thread of its own, interrupts.cpp): Windows allows that only to a
+// file opened to share deletion. Gone once closed, the old image untouched.
+TEST(the_temporary_can_be_removed_while_open) {
+    ScratchFolder dir;
+    {
+        std::ofstream old(dir.file("a.ppm"), std::ios::binary);
+        old << "old";
+    }
+    {
+        rt::PendingFile file(dir.file("a.ppm").c_str());
+        file.write("abc", 3);
+        int removed = 0;
+        for (const fs::directory_entry& entry : fs::directory_iterator(dir.path))
+            if (entry.path().filename() != "a.ppm") removed += _wunlink(entry.path().c_str()) == 0 ? 1 : 0;
+        CHECK_EQ(removed, 1);
+    }
+    CHECK_EQ(dir.entries(), 1U);
+    CHECK_EQ(contents(dir.file("a.ppm")), std::string("old"));
+}
+#endif
 
 TEST(read_ppm_reads_what_save_wrote) {
     ScratchFolder dir;

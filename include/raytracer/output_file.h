@@ -13,8 +13,8 @@
 namespace rt {
 
 // The hidden temporary an image is written to before it is put in place: the prefix, 16
-// hex digits and the suffix (output_file.cpp); choose_output() asks the system about a
-// name of its length in the image's folder.
+// hex digits and the suffix (temporary_name_in(), output_file.cpp); choose_output() asks
+// the system about a name of its length in the image's folder.
 inline constexpr std::string_view kTemporaryPrefix = ".raytracer-", kTemporarySuffix = ".tmp";
 inline constexpr std::size_t kTemporaryNameBytes = kTemporaryPrefix.size() + 16 + kTemporarySuffix.size();
 
@@ -50,7 +50,7 @@ public:
     // Why the file could not be created; empty when it was.
     const std::string& error() const { return error_; }
     // Announces the final size, so that the file system allocates it at once (a hint,
-    // ignored where unsupported: see output_file.cpp for why it pays), and so that a
+    // ignored where unsupported: see output_file_posix.cpp for why it pays), and so that a
     // stream knows when the whole image is out.
     void expect_size(std::uint64_t bytes);
     // Appends the bytes (only when error() is empty); a failure is reported by commit().

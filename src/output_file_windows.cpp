@@ -1,0 +1,134 @@
+// The image's file on Windows (output_file.cpp): a named temporary, opened to share
+// deletion, renamed over the target by MoveFileExW.
+#ifndef NOMINMAX
+#define NOMINMAX
+#endif
+#include <fcntl.h>
+#include <io.h>
+#include <windows.h>
+
+#include <cerrno>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <system_error>
+
+#include "output_file_parts.h"
+#include "raytracer/interrupts.h"
+#include "raytracer/output_file.h"
+#include "raytracer/shown.h"
+
+namespace rt {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The errno of a CreateFileW failure, for cannot_create(): the one _wfopen would set,
+// but for a name too long, which says so.
+int errno_of(DWORD error) {
+    switch (error) {
+        case ERROR_FILENAME_EXCED_RANGE:
+            return ENAMETOOLONG;
+        case ERROR_FILE_NOT_FOUND:
+        case ERROR_PATH_NOT_FOUND:
+        case ERROR_INVALID_DRIVE:
+        case ERROR_BAD_PATHNAME:
+            return ENOENT;
+        case ERROR_ACCESS_DENIED:
+        case ERROR_SHARING_VIOLATION:
+        case ERROR_WRITE_PROTECT:
+            return EACCES;
+        case ERROR_DISK_FULL:
+        case ERROR_HANDLE_DISK_FULL:
+            return ENOSPC;
+        default:
+            return EINVAL;
+    }
+}
+
+// A new file for writing, opened to share deletion: an interrupt removes the temporary
+// while the render still holds it open (interrupts.cpp), which Windows refuses for a
+// file opened by _wfopen. On failure, null and errno set.
+FILE* create_removable(const wchar_t* path) {
+    const HANDLE handle = CreateFileW(path, GENERIC_WRITE, FILE_SHARE_READ | FILE_SHARE_DELETE, nullptr,
+                                      CREATE_ALWAYS, FILE_ATTRIBUTE_NORMAL, nullptr);
+    if (handle == INVALID_HANDLE_VALUE) {
+        errno = errno_of(GetLastError());
+        return nullptr;
+    }
+    const int fd = _open_osfhandle(reinterpret_cast<std::intptr_t>(handle), _O_WRONLY | _O_BINARY);
+    if (fd < 0) {
+        (void)CloseHandle(handle);
+        return nullptr;
+    }
+    FILE* file = _fdopen(fd, "wb");
+    if (file == nullptr) (void)_close(fd);
+    return file;
+}
+
+}  // namespace
+
+bool replace_file(const fs::path& from, const fs::path& to, std::string& error) {
+    // std::filesystem::rename is not guaranteed to replace an existing file on Windows
+    // with every standard library, so MoveFileExW is asked to explicitly.
+    if (MoveFileExW(from.c_str(), to.c_str(), MOVEFILE_REPLACE_EXISTING | MOVEFILE_WRITE_THROUGH))
+        return true;
+    error = "cannot replace it (Windows error " + std::to_string(GetLastError()) + ")";
+    return false;
+}
+
+void PendingFile::open_replacement() {
+    std::error_code ec;
+    if (fs::is_directory(target_, ec)) {
+        error_ = shown(name_, kMaxShownPath) + " is a folder";
+        return;
+    }
+    replaces_ = fs::exists(target_, ec);
+    open_named(folder_of(target_).native());
+}
+
+bool PendingFile::open_unnamed(const NativePath& /*folder*/) { return false; }
+
+void PendingFile::open_named(const NativePath& folder) {
+    temporary_ = temporary_name_in(folder).native();
+    if (!set_interrupt_cleanup(temporary_.c_str())) {
+        error_ = shown(name_, kMaxShownPath) + " cannot be created: its path is too long";
+        return;
+    }
+    file_ = create_removable(temporary_.c_str());  // wide names: any Unicode path
+    if (file_ == nullptr) {
+        const int error = errno;
+        clear_interrupt_cleanup();
+        error_ = cannot_create(name_, folder, error);
+        return;
+    }
+    std::setvbuf(file_, nullptr, _IONBF, 0);  // every write is one large block: no copy
+    open_ = true;
+}
+
+bool PendingFile::link_unnamed(std::string& error) {
+    error = "unnamed files are not supported here";
+    return false;
+}
+
+void PendingFile::close_file() {
+    if (file_ != nullptr && file_ != stdout) (void)std::fclose(file_);
+    if (file_ == stdout) (void)std::fflush(stdout);
+    file_ = nullptr;
+    open_ = false;
+}
+
+void PendingFile::write(const void* data, std::size_t size) {
+    if (!open_ || write_error_ != 0) return;
+    stream_bytes_ahead();
+    if (std::fwrite(data, 1, size, file_) != size)
+        write_error_ = errno != 0 ? errno : ENOSPC;
+    else
+        stream_bytes_out(size);
+}
+
+void PendingFile::expect_size(std::uint64_t bytes) { expected_ = bytes; }
+
+}  // namespace rt
