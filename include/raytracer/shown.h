@@ -15,8 +15,8 @@ inline constexpr std::size_t kMaxShownToken = 40;
 inline constexpr std::size_t kMaxShownPath = 160;
 
 // Escaped and cut, without quotes: the text, or "first bytes... (N bytes)". A byte
-// outside printable ASCII shows as \xNN, so a cut may fall inside a UTF-8 character,
-// and so does a backslash before an x (as \x5c): every \x shown starts an escape, so a
+// outside printable ASCII shows as \xNN (so a cut may fall inside a UTF-8 character),
+// and so does a backslash before an x, as \x5c: every \x shown starts an escape, so a
 // name written "\x1b" and one holding an ESC byte read apart, while other backslashes,
 // as in Windows paths, show as they are.
 std::string escaped(std::string_view text, std::size_t most = kMaxShownPath);
