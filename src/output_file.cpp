@@ -154,16 +154,8 @@ std::string PendingFile::commit() {
         else
             error = shown(name_, kMaxShownPath) + " cannot be put in place: " + error;
     } else {
-#ifdef _WIN32
-        const bool closed = std::fclose(file_) == 0;
-        file_ = nullptr;
-#else
-        const bool closed = ::close(fd_) == 0;
-        fd_ = -1;
-#endif
-        if (!closed)
-            error = shown(name_, kMaxShownPath) + " could not be written in full (is the disk full?)";
-        else if (!replace_file(temporary_, target_, error))
+        error = close_kept();
+        if (error.empty() && !replace_file(temporary_, target_, error))
             error = shown(name_, kMaxShownPath) + " cannot be replaced: " + error;
     }
     if (error.empty()) {

@@ -129,6 +129,13 @@ void PendingFile::close_file() {
     open_ = false;
 }
 
+std::string PendingFile::close_kept() {
+    const bool closed = ::close(fd_) == 0;
+    fd_ = -1;
+    if (closed) return {};
+    return shown(name_, kMaxShownPath) + " could not be written in full (is the disk full?)";
+}
+
 void PendingFile::write(const void* data, std::size_t size) {
     if (!open_ || write_error_ != 0) return;
     stream_bytes_ahead();

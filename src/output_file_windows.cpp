@@ -1,5 +1,6 @@
-// The image's file on Windows (output_file.cpp): a named temporary, opened to share
-// deletion, renamed over the target by MoveFileExW.
+// The image's file on Windows (output_file.cpp): a named temporary that the system
+// deletes when its handle closes until commit() keeps it, renamed over the target by
+// MoveFileExW.
 #ifndef NOMINMAX
 #define NOMINMAX
 #endif
@@ -48,16 +49,28 @@ int errno_of(DWORD error) {
     }
 }
 
-// A new file for writing, opened to share deletion: an interrupt removes the temporary
-// while the render still holds it open (interrupts.cpp), which Windows refuses for a
-// file opened by _wfopen. On failure, null and errno set.
-FILE* create_removable(const wchar_t* path) {
-    const HANDLE handle = CreateFileW(path, GENERIC_WRITE, FILE_SHARE_READ | FILE_SHARE_DELETE, nullptr,
-                                      CREATE_ALWAYS, FILE_ATTRIBUTE_NORMAL, nullptr);
+// Whether the system deletes the file when its last handle closes: the handle's delete
+// disposition, which needs the DELETE access right.
+bool set_deleted_on_close(HANDLE handle, bool deleted) {
+    FILE_DISPOSITION_INFO disposition{};
+    disposition.DeleteFile = deleted ? TRUE : FALSE;
+    return SetFileInformationByHandle(handle, FileDispositionInfo, &disposition, sizeof disposition) != 0;
+}
+
+// A new file for writing that is deleted when the process ends, however it ends (Ctrl+C,
+// the console window closed, the process killed), as Linux's unnamed O_TMPFILE is:
+// deleted_on_close says whether the file system took that. Opened to share deletion
+// too: where it did not, an interrupt's handler removes the temporary while the render
+// still holds it open (interrupts.cpp), which Windows refuses for a file opened by
+// _wfopen. On failure, null and errno set.
+FILE* create_removable(const wchar_t* path, bool& deleted_on_close) {
+    const HANDLE handle = CreateFileW(path, GENERIC_WRITE | DELETE, FILE_SHARE_READ | FILE_SHARE_DELETE,
+                                      nullptr, CREATE_ALWAYS, FILE_ATTRIBUTE_NORMAL, nullptr);
     if (handle == INVALID_HANDLE_VALUE) {
         errno = errno_of(GetLastError());
         return nullptr;
     }
+    deleted_on_close = set_deleted_on_close(handle, true);
     const int fd = _open_osfhandle(reinterpret_cast<std::intptr_t>(handle), _O_WRONLY | _O_BINARY);
     if (fd < 0) {
         (void)CloseHandle(handle);
@@ -97,7 +110,7 @@ void PendingFile::open_named(const NativePath& folder) {
         error_ = shown(name_, kMaxShownPath) + " cannot be created: its path is too long";
         return;
     }
-    file_ = create_removable(temporary_.c_str());  // wide names: any Unicode path
+    file_ = create_removable(temporary_.c_str(), deleted_on_close_);  // wide names: any Unicode path
     if (file_ == nullptr) {
         const int error = errno;
         clear_interrupt_cleanup();
@@ -118,6 +131,21 @@ void PendingFile::close_file() {
     if (file_ == stdout) (void)std::fflush(stdout);
     file_ = nullptr;
     open_ = false;
+}
+
+std::string PendingFile::close_kept() {
+    const bool flushed = std::fflush(file_) == 0;
+    const bool kept = !deleted_on_close_ ||
+                      set_deleted_on_close(reinterpret_cast<HANDLE>(_get_osfhandle(_fileno(file_))), false);
+    const DWORD keep_error = GetLastError();
+    const bool closed = std::fclose(file_) == 0;
+    file_ = nullptr;
+    if (!flushed || !closed)
+        return shown(name_, kMaxShownPath) + " could not be written in full (is the disk full?)";
+    if (!kept)
+        return shown(name_, kMaxShownPath) + " cannot be kept (Windows error " + std::to_string(keep_error) +
+               ")";
+    return {};
 }
 
 void PendingFile::write(const void* data, std::size_t size) {

@@ -1,12 +1,7 @@
 // Faults around a render (issue 17), on the real raytracer.exe started as a child
 // process: signals sent mid-render, a file-size limit, permissions kept, long names,
 // devices and FIFOs, the scene file named as OUTPUT through other names, and the
-// progress line on a pseudo-terminal. POSIX only: the Windows build skips them all.
-#include "check.h"
-
-#ifdef _WIN32
-TEST(posix_faults_are_skipped_on_windows) { std::cout << "skip  faults: POSIX processes and signals\n"; }
-#else
+// progress line on a pseudo-terminal. POSIX's: faults_windows.cpp holds Windows'.
 #include <fcntl.h>
 #include <grp.h>
 #include <sys/ioctl.h>
@@ -29,6 +24,8 @@ TEST(posix_faults_are_skipped_on_windows) { std::cout << "skip  faults: POSIX pr
 #include <utility>
 #include <vector>
 
+#include "check.h"
+#include "fault_tests.h"
 #include "raytracer/compiler.h"
 #include "raytracer/interrupts.h"
 #include "raytracer/output_file.h"
@@ -38,81 +35,9 @@ TEST(posix_faults_are_skipped_on_windows) { std::cout << "skip  faults: POSIX pr
 #endif
 
 namespace fs = std::filesystem;
+using namespace fault_tests;
 
 namespace {
-
-// A fresh working folder per test; stderr is captured beside it, not in it.
-struct Scratch {
-    fs::path root, work;
-    Scratch() {
-        std::random_device random;
-        root = fs::temp_directory_path() / ("raytracer-faults-" + std::to_string(random()));
-        work = root / "work";
-        fs::create_directories(work);
-    }
-    Scratch(const Scratch&) = delete;
-    Scratch& operator=(const Scratch&) = delete;
-    ~Scratch() {
-        std::error_code ignored;
-        fs::remove_all(root, ignored);
-    }
-    std::string names() const {
-        std::vector<std::string> all;
-        for (const fs::directory_entry& e : fs::directory_iterator(work)) all.push_back(e.path().filename());
-        std::sort(all.begin(), all.end());
-        std::string joined;
-        for (const std::string& name : all) joined += (joined.empty() ? "" : " ") + name;
-        return joined;
-    }
-};
-
-std::string read_bytes(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-void write_bytes(const fs::path& file, const std::string& bytes) {
-    std::ofstream(file, std::ios::binary) << bytes;
-}
-
-std::string small_scene(const std::string& output) {
-    return "NEAR 1\nLEFT -1\nRIGHT 1\nBOTTOM -1\nTOP 1\nRES 100 100\nSPHERE s 0 0 -5 1 1 1 1 0 0 0.2 0.5 0.5 "
-           "0.2 "
-           "10\nLIGHT l 5 5 0 1 1 1\nBACK 0.5 0.25 1\nAMBIENT 0.2 0.2 0.2\nOUTPUT " +
-           output + "\n";
-}
-
-// 200 ellipsoids and 200 lights scattered by a fixed generator: at RES 1200, 1.4 s on the
-// build machine's two cores, 2.7 s on one, longer under the sanitizers (at RES 400 under
-// ThreadSanitizer, still seconds). The tests below signal it at most 0.25 s after its
-// start, well inside its render.
-#ifdef RT_UNDER_TSAN
-constexpr int kSlowRes = 400;
-#else
-constexpr int kSlowRes = 1200;
-#endif
-// The size of its image: the P6 header, then 3 bytes a pixel.
-std::size_t slow_image_bytes() {
-    const std::string side = std::to_string(kSlowRes);
-    return ("P6\n" + side + " " + side + "\n255\n").size() + std::size_t{3} * kSlowRes * kSlowRes;
-}
-std::string slow_scene(const std::string& output, int res = kSlowRes) {
-    std::minstd_rand random(12345);
-    auto u = [&random](double lo, double hi) {
-        return lo + (hi - lo) * static_cast<double>(random()) / static_cast<double>(std::minstd_rand::max());
-    };
-    std::string text = "NEAR 1\nLEFT -1\nRIGHT 1\nBOTTOM -1\nTOP 1\nRES " + std::to_string(res) + " " +
-                       std::to_string(res) + "\nBACK 0.1 0.1 0.1\nAMBIENT 0.2 0.2 0.2\nOUTPUT " + output +
-                       "\n";
-    for (int i = 0; i < 200; ++i)
-        text += "SPHERE s" + std::to_string(i) + " " + std::to_string(u(-4, 4)) + " " +
-                std::to_string(u(-4, 4)) + " " + std::to_string(u(-12, -5)) +
-                " 0.3 0.3 0.3 0.5 0.5 0.5 0.2 0.5 0.5 0.5 10\n";
-    for (int i = 0; i < 200; ++i)
-        text += "LIGHT l" + std::to_string(i) + " " + std::to_string(u(-9, 9)) + " " +
-                std::to_string(u(-9, 9)) + " " + std::to_string(u(-3, 3)) + " 0.01 0.01 0.01\n";
-    return text;
-}
 
 struct Options {
     bool named_temporary = false;         // RAYTRACER_NAMED_TEMPORARY: the fallback of other systems
@@ -824,4 +749,3 @@ TEST(an_interrupt_once_the_image_is_out_is_ignored) {
     CHECK_EQ(std::raise(SIGTERM), 0);
     CHECK_EQ(stream.commit(), std::string());
 }
-#endif  // _WIN32

@@ -22,8 +22,10 @@ inline constexpr std::size_t kTemporaryNameBytes = kTemporaryPrefix.size() + 16 
 enum class Destination {
     // A new file, or a regular file replaced whole (keeping its permissions) once
     // complete. On Linux the file is created unnamed (O_TMPFILE) and linked into place
-    // by commit(), so even SIGKILL leaves nothing; elsewhere it is a hidden temporary
-    // beside the target, removed on error and by the interrupt handlers (interrupts.h).
+    // by commit(), so even SIGKILL leaves nothing; on Windows it is a hidden temporary
+    // beside the target that the system deletes when the process ends, however it ends,
+    // until commit() keeps it; elsewhere such a temporary, removed on error and by the
+    // interrupt handlers (interrupts.h).
     Replace,
     // An existing device or FIFO, written directly (the user named it with -o).
     WriteInto,
@@ -66,6 +68,9 @@ private:
     bool link_unnamed(std::string& error);
     void discard();
     void close_file();
+    // Closes the complete named temporary so that it stays, to be renamed over the
+    // target; on failure, why (with the name), and the file is gone.
+    std::string close_kept();
     std::string write_failure() const;
     void stream_bytes_ahead() const;
     void stream_bytes_out(std::size_t size);
@@ -75,6 +80,7 @@ private:
     NativePath target_, temporary_;  // temporary_: empty while unnamed
 #ifdef _WIN32
     std::FILE* file_ = nullptr;
+    bool deleted_on_close_ = false;  // the temporary goes when its handle closes
 #else
     int fd_ = -1;
 #endif

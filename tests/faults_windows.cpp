@@ -1,0 +1,62 @@
+// Faults around a render on Windows, on the real raytracer.exe started as a child
+// process (faults.cpp holds POSIX's): a render killed mid-way, as by Task Manager or a
+// closed console window, leaves no temporary behind and an existing image as it was.
+#include "check.h"
+
+#ifndef NOMINMAX
+#define NOMINMAX
+#endif
+#include <windows.h>
+
+#include <string>
+
+#include "fault_tests.h"
+#include "raytracer/output_file.h"
+
+#ifndef RAYTRACER_EXE
+#error "RAYTRACER_EXE must name the raytracer.exe under test"
+#endif
+
+using namespace fault_tests;
+
+namespace {
+
+// Whether the folder holds a temporary of raytracer.exe's (output_file.h).
+bool has_temporary(const fs::path& folder) {
+    for (const fs::directory_entry& entry : fs::directory_iterator(folder))
+        if (entry.path().filename().string().rfind(std::string(rt::kTemporaryPrefix), 0) == 0) return true;
+    return false;
+}
+
+}  // namespace
+
+// TerminateProcess runs no code of the program's: only the system can remove the
+// temporary, which it deletes when the killed process's handle to it closes.
+TEST(a_killed_render_leaves_nothing_behind) {
+    const Scratch folder;
+    const std::string precious = "an existing out.ppm that a killed run may not touch\n";
+    write_bytes(folder.work / "slow.txt", slow_scene("out.ppm"));
+    write_bytes(folder.work / "out.ppm", precious);
+    std::wstring command = L"\"" + fs::path(RAYTRACER_EXE).wstring() + L"\" --quiet slow.txt";
+    STARTUPINFOW startup{};
+    startup.cb = sizeof startup;
+    PROCESS_INFORMATION process{};
+    CHECK(CreateProcessW(nullptr, command.data(), nullptr, nullptr, FALSE, 0, nullptr, folder.work.c_str(),
+                         &startup, &process));
+    if (process.hProcess == nullptr) return;
+    bool rendering = false;  // its temporary is there once the scene is read
+    for (int wait = 0; wait < 600 && !rendering; ++wait) {
+        rendering = has_temporary(folder.work);
+        if (!rendering) Sleep(50);
+    }
+    CHECK(rendering);
+    CHECK(TerminateProcess(process.hProcess, 99));
+    CHECK_EQ(WaitForSingleObject(process.hProcess, INFINITE), WAIT_OBJECT_0);
+    DWORD status = 0;
+    CHECK(GetExitCodeProcess(process.hProcess, &status));
+    CHECK_EQ(status, DWORD{99});
+    (void)CloseHandle(process.hThread);
+    (void)CloseHandle(process.hProcess);
+    CHECK_EQ(folder.names(), std::string("out.ppm slow.txt"));
+    CHECK_EQ(read_bytes(folder.work / "out.ppm"), precious);
+}
