@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "check.h"
+#include "process_scratch.h"
 #include "raytracer/image.h"
 #include "raytracer/ppm.h"
 #include "raytracer/version.h"
@@ -24,60 +25,16 @@
 #endif
 
 namespace fs = std::filesystem;
+using namespace process_scratch;
 
 namespace {
-
-// A fresh, empty working folder per test, inside a root of its own that also holds
-// the captured output; both removed afterwards.
-class Scratch {
-public:
-    Scratch() {
-        std::random_device random;
-        root_ = fs::temp_directory_path() / ("raytracer-cli-" + std::to_string(random()));
-        path_ = root_ / "work";
-        fs::create_directories(path_);
-    }
-    Scratch(const Scratch&) = delete;
-    Scratch& operator=(const Scratch&) = delete;
-    ~Scratch() {
-        std::error_code ignored;
-        fs::remove_all(root_, ignored);
-    }
-    [[nodiscard]] const fs::path& path() const { return path_; }
-    [[nodiscard]] const fs::path& root() const { return root_; }
-    [[nodiscard]] fs::path operator/(const std::string& name) const { return path_ / name; }
-
-    // The names in the folder, sorted, separated by spaces.
-    [[nodiscard]] std::string names() const {
-        std::vector<std::string> all;
-        for (const fs::directory_entry& entry : fs::directory_iterator(path_))
-            all.push_back(entry.path().filename().string());
-        std::sort(all.begin(), all.end());
-        std::string joined;
-        for (const std::string& name : all) joined += (joined.empty() ? "" : " ") + name;
-        return joined;
-    }
-
-private:
-    fs::path root_, path_;
-};
-
-std::string read_bytes(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-void write_bytes(const fs::path& file, const std::string& bytes) {
-    std::ofstream out(file, std::ios::binary);
-    out << bytes;
-}
 
 using Run = run_program::Result;
 
 // Runs raytracer.exe with these arguments in the folder, as a grading script does.
 // Its output is read as text: a Windows program's "\r\n" counts as "\n".
 Run run(const Scratch& folder, const std::vector<std::string>& arguments) {
-    Run r = run_program::run(RAYTRACER_EXE, arguments, folder.path(), folder.root());
+    Run r = run_program::run(RAYTRACER_EXE, arguments, folder.work, folder.root);
     for (std::string* text : {&r.out, &r.err})
         text->erase(std::remove(text->begin(), text->end(), '\r'), text->end());
     return r;
@@ -137,7 +94,7 @@ TEST(version_prints_the_version_and_exits_0) {
 // One line on stderr that points at --help (graders collect stderr line by line).
 TEST(a_wrong_command_line_exits_2_with_one_line_on_stderr) {
     const Scratch folder;
-    write_bytes(folder / "scene.txt", empty_scene("picture.ppm"));
+    write_bytes(folder.work / "scene.txt", empty_scene("picture.ppm"));
     const std::vector<std::pair<std::vector<std::string>, std::string>> wrong = {
         {{}, "no scene file given, expected exactly one scene file"},
         {{"a.txt", "b.txt"}, "more than one argument ('a.txt' and 'b.txt')"},
@@ -174,8 +131,8 @@ TEST(a_wrong_command_line_exits_2_with_one_line_on_stderr) {
 // --threads N and --threads=N anywhere, the other options anywhere, and "--" ending them.
 TEST(options_go_anywhere_in_either_form) {
     const Scratch folder;
-    write_bytes(folder / "scene.txt", empty_scene("picture.ppm"));
-    write_bytes(folder / "-scene.txt", empty_scene("dash.ppm"));
+    write_bytes(folder.work / "scene.txt", empty_scene("picture.ppm"));
+    write_bytes(folder.work / "-scene.txt", empty_scene("dash.ppm"));
     const std::vector<std::vector<std::string>> right = {
         {"--threads", "2", "scene.txt"}, {"scene.txt", "--threads", "2"},
         {"--threads=1", "scene.txt"},    {"scene.txt", "--quiet"},
@@ -185,67 +142,67 @@ TEST(options_go_anywhere_in_either_form) {
         CHECK_EQ(r.status, 0);
         CHECK_EQ(r.err, std::string());
     }
-    check_is_background_image(folder / "picture.ppm");
-    check_is_background_image(folder / "dash.ppm");
+    check_is_background_image(folder.work / "picture.ppm");
+    check_is_background_image(folder.work / "dash.ppm");
 }
 
 // -o overrides OUTPUT; -o - writes the same bytes to standard output (for pipes).
 TEST(dash_o_overrides_output_and_dash_is_standard_output) {
     const Scratch folder;
-    write_bytes(folder / "scene.txt", empty_scene("picture.ppm"));
+    write_bytes(folder.work / "scene.txt", empty_scene("picture.ppm"));
     Run r = run(folder, {"scene.txt", "-o", "other.ppm"});
     CHECK_EQ(r.status, 0);
-    check_is_background_image(folder / "other.ppm");
+    check_is_background_image(folder.work / "other.ppm");
     CHECK_EQ(folder.names(), std::string("other.ppm scene.txt"));
     r = run(folder, {"--output=third.ppm", "scene.txt"});
     CHECK_EQ(r.status, 0);
-    check_is_background_image(folder / "third.ppm");
+    check_is_background_image(folder.work / "third.ppm");
     // Read raw: the image's bytes, not text.
-    const Run piped = run_program::run(RAYTRACER_EXE, {"-o", "-", "scene.txt"}, folder.path(), folder.root());
+    const Run piped = run_program::run(RAYTRACER_EXE, {"-o", "-", "scene.txt"}, folder.work, folder.root);
     CHECK_EQ(piped.status, 0);
     CHECK_EQ(piped.err, std::string());
-    CHECK(piped.out == read_bytes(folder / "other.ppm"));
+    CHECK(piped.out == read_bytes(folder.work / "other.ppm"));
     CHECK_EQ(folder.names(), std::string("other.ppm scene.txt third.ppm"));
 }
 
 // A scene may name only a file in or below the working folder; -o may name any.
 TEST(a_scene_may_not_write_outside_the_working_folder) {
     const Scratch folder;
-    const fs::path outside = folder.root() / "outside.ppm";
+    const fs::path outside = folder.root / "outside.ppm";
     const std::vector<std::pair<std::string, std::string>> refused = {
         {outside.string(), "is an absolute path, expected a file name in or below the working folder"},
         {"../outside.ppm", "leaves the working folder ('..')"},
         {"sub/../../outside.ppm", "leaves the working folder ('..')"},
         {"scene.txt", "'scene.txt' is the scene file itself"},
         {"./scene.txt", "is the scene file itself"}};
-    fs::create_directories(folder / "sub");
+    fs::create_directories(folder.work / "sub");
     for (const auto& [output, message] : refused) {
         const std::string scene = empty_scene(output);
-        write_bytes(folder / "scene.txt", scene);
+        write_bytes(folder.work / "scene.txt", scene);
         const Run r = run(folder, {"scene.txt"});
         CHECK_EQ(r.status, 3);
         CHECK(contains(r.err, "scene.txt:9: error: OUTPUT "));
         CHECK(contains(r.err, message));
         CHECK_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1);
         CHECK(!fs::exists(outside));
-        CHECK_EQ(read_bytes(folder / "scene.txt"), scene);
+        CHECK_EQ(read_bytes(folder.work / "scene.txt"), scene);
         CHECK_EQ(folder.names(), std::string("scene.txt sub"));
     }
     // The user may: -o takes any path, but never the scene file.
-    write_bytes(folder / "scene.txt", empty_scene(outside.string()));
+    write_bytes(folder.work / "scene.txt", empty_scene(outside.string()));
     Run r = run(folder, {"scene.txt", "-o", outside.string()});
     CHECK_EQ(r.status, 0);
     check_is_background_image(outside);
     r = run(folder, {"scene.txt", "-o", "scene.txt"});
     CHECK_EQ(r.status, 3);
     CHECK(contains(r.err, "raytracer.exe: error: -o 'scene.txt' is the scene file itself"));
-    CHECK(contains(read_bytes(folder / "scene.txt"), "OUTPUT"));
+    CHECK(contains(read_bytes(folder.work / "scene.txt"), "OUTPUT"));
 }
 
 // Control bytes and long values in a path reach the terminal escaped and cut.
 TEST(paths_in_messages_are_escaped_and_cut) {
     const Scratch folder;
-    write_bytes(folder / "scene.txt", empty_scene("\x1b]0;title\x07/" + std::string(5000, 'x')));
+    write_bytes(folder.work / "scene.txt", empty_scene("\x1b]0;title\x07/" + std::string(5000, 'x')));
     const Run r = run(folder, {"scene.txt"});
     CHECK_EQ(r.status, 3);
     CHECK(contains(r.err, "OUTPUT '\\x1b]0;title\\x07/xxx"));
@@ -260,9 +217,9 @@ TEST(paths_in_messages_are_escaped_and_cut) {
 #endif
     // Every \x shown starts an escape: a backslash before an x is escaped too, so that the
     // text "\x1b" and an ESC byte read apart; other backslashes show as they are.
-    write_bytes(folder / "scene.txt", empty_scene("a\\x1b/"));
+    write_bytes(folder.work / "scene.txt", empty_scene("a\\x1b/"));
     CHECK(contains(run(folder, {"scene.txt"}).err, "OUTPUT 'a\\x5cx1b/'"));
-    write_bytes(folder / "scene.txt", empty_scene("a\\\x1b\\b/"));
+    write_bytes(folder.work / "scene.txt", empty_scene("a\\\x1b\\b/"));
     CHECK(contains(run(folder, {"scene.txt"}).err, "OUTPUT 'a\\\\x1b\\b/'"));
 }
 
@@ -270,7 +227,7 @@ TEST(paths_in_messages_are_escaped_and_cut) {
 // the same bytes as the fast path, here on a scene with shadows and mirrors.
 TEST(reference_renders_the_same_bytes_as_the_fast_path) {
     const Scratch folder;
-    write_bytes(folder / "scene.txt",
+    write_bytes(folder.work / "scene.txt",
                 "NEAR 1\nLEFT -1\nRIGHT 1\nBOTTOM -1\nTOP 1\nRES 48 36\n"
                 "SPHERE floor 0 -3 -10 20 1 20 0.5 0.5 0.5 0.2 0.6 0.3 0.4 10\n"
                 "SPHERE ball -1 0 -8 1 1.5 1 1 0.2 0.1 0.3 0.7 0.5 0.5 50\n"
@@ -284,10 +241,10 @@ TEST(reference_renders_the_same_bytes_as_the_fast_path) {
         const Run r = run(folder, arguments);
         CHECK_EQ(r.status, 0);
         CHECK_EQ(r.err, std::string());
-        CHECK(read_bytes(folder / "reference.ppm") == read_bytes(folder / "fast.ppm"));
+        CHECK(read_bytes(folder.work / "reference.ppm") == read_bytes(folder.work / "fast.ppm"));
     }
     // Not an image of the background (25 25 51) alone: the ellipsoids are in it.
-    const std::string bytes = read_bytes(folder / "fast.ppm");
+    const std::string bytes = read_bytes(folder.work / "fast.ppm");
     CHECK_EQ(bytes.size(), std::size_t{13 + 48 * 36 * 3});
     int background = 0;
     for (std::size_t i = 13; i + 2 < bytes.size(); i += 3)
@@ -308,20 +265,20 @@ TEST(a_scene_of_extreme_size_renders_as_at_its_own) {
                "0.2\nOUTPUT " +
                output + "\n";
     };
-    write_bytes(folder / "one.txt", scene("", "one.ppm"));
-    write_bytes(folder / "huge.txt", scene("e160", "huge.ppm"));
-    write_bytes(folder / "tiny.txt", scene("e-160", "tiny.ppm"));
+    write_bytes(folder.work / "one.txt", scene("", "one.ppm"));
+    write_bytes(folder.work / "huge.txt", scene("e160", "huge.ppm"));
+    write_bytes(folder.work / "tiny.txt", scene("e-160", "tiny.ppm"));
     // A coordinate far below the scene's size (a centre's y of 1e-240 at 1e160) does not
     // keep the scene from its shift: it counts as the 0 it is beside the others.
     std::string spanning = scene("e160", "spanning.ppm");
     spanning.replace(spanning.find(" 0 -10e160"), 10, " 1e-240 -10e160");
-    write_bytes(folder / "spanning.txt", spanning);
+    write_bytes(folder.work / "spanning.txt", spanning);
     for (const char* file : {"one.txt", "huge.txt", "tiny.txt", "spanning.txt"})
         CHECK_EQ(run(folder, {file}).status, 0);
-    const std::string one = read_bytes(folder / "one.ppm");
-    CHECK(one == read_bytes(folder / "huge.ppm"));
-    CHECK(one == read_bytes(folder / "tiny.ppm"));
-    CHECK(one == read_bytes(folder / "spanning.ppm"));
+    const std::string one = read_bytes(folder.work / "one.ppm");
+    CHECK(one == read_bytes(folder.work / "huge.ppm"));
+    CHECK(one == read_bytes(folder.work / "tiny.ppm"));
+    CHECK(one == read_bytes(folder.work / "spanning.ppm"));
     CHECK(one.find("\xff\x80") != std::string::npos);  // lit: red 255, green 128 somewhere
 
     // A light at 1e300 beside a speck of scale 1e-10: no shift holds both squares, and
@@ -334,37 +291,37 @@ TEST(a_scene_of_extreme_size_renders_as_at_its_own) {
                " 1 1 1\nSPHERE speck 50 0 -5 1e-10 1e-10 1e-10 1 1 1 0 0 0 0 1\nBACK 0 0 0\n"
                "AMBIENT 1 1 1\nOUTPUT far.ppm\n";
     };
-    write_bytes(folder / "far.txt", far_light("1e300"));
+    write_bytes(folder.work / "far.txt", far_light("1e300"));
     CHECK_EQ(run(folder, {"far.txt"}).status, 0);
-    const std::string farthest = read_bytes(folder / "far.ppm");
-    write_bytes(folder / "far.txt", far_light("1e250"));
+    const std::string farthest = read_bytes(folder.work / "far.ppm");
+    write_bytes(folder.work / "far.txt", far_light("1e250"));
     CHECK_EQ(run(folder, {"far.txt"}).status, 0);
-    CHECK(farthest == read_bytes(folder / "far.ppm"));
+    CHECK(farthest == read_bytes(folder.work / "far.ppm"));
     CHECK(farthest.find("\xff\xff\xff") != std::string::npos);  // lit: 0.1 + 0.9 facing the light
 }
 
 TEST(a_scene_renders_silently_to_its_output_file) {
     const Scratch folder;
-    write_bytes(folder / "scene.txt", empty_scene("picture.ppm"));
+    write_bytes(folder.work / "scene.txt", empty_scene("picture.ppm"));
     const Run r = run(folder, {"scene.txt"});
     CHECK_EQ(r.status, 0);
     CHECK_EQ(r.out, std::string());
     CHECK_EQ(r.err, std::string());
-    check_is_background_image(folder / "picture.ppm");
+    check_is_background_image(folder.work / "picture.ppm");
     CHECK_EQ(folder.names(), std::string("picture.ppm scene.txt"));
 }
 
 TEST(an_existing_output_file_is_replaced_whole) {
     const Scratch folder;
-    write_bytes(folder / "scene.txt", empty_scene("picture.ppm"));
+    write_bytes(folder.work / "scene.txt", empty_scene("picture.ppm"));
     // Longer than the new image, so a write in place without truncation would show.
-    write_bytes(folder / "picture.ppm", std::string(1000, 'x'));
+    write_bytes(folder.work / "picture.ppm", std::string(1000, 'x'));
     for (int pass = 0; pass < 2; ++pass) {  // replacing the program's own output as well
         const Run r = run(folder, {"scene.txt"});
         CHECK_EQ(r.status, 0);
         CHECK_EQ(r.err, std::string());
-        check_is_background_image(folder / "picture.ppm");
-        CHECK_EQ(read_bytes(folder / "picture.ppm").size(), std::size_t{11 + 36});
+        check_is_background_image(folder.work / "picture.ppm");
+        CHECK_EQ(read_bytes(folder.work / "picture.ppm").size(), std::size_t{11 + 36});
         // No temporary file left beside it.
         CHECK_EQ(folder.names(), std::string("picture.ppm scene.txt"));
     }
@@ -372,14 +329,14 @@ TEST(an_existing_output_file_is_replaced_whole) {
 
 TEST(a_bad_scene_exits_1_and_leaves_an_existing_output_alone) {
     const Scratch folder;
-    write_bytes(folder / "bad.txt", empty_scene("picture.ppm") + "CUBE 1 2 3\n");
-    write_bytes(folder / "picture.ppm", "old");
+    write_bytes(folder.work / "bad.txt", empty_scene("picture.ppm") + "CUBE 1 2 3\n");
+    write_bytes(folder.work / "picture.ppm", "old");
     const Run r = run(folder, {"bad.txt"});
     CHECK_EQ(r.status, 1);
     CHECK_EQ(r.out, std::string());
     CHECK(contains(r.err, "bad.txt"));
     CHECK(contains(r.err, "CUBE"));
-    CHECK_EQ(read_bytes(folder / "picture.ppm"), std::string("old"));
+    CHECK_EQ(read_bytes(folder.work / "picture.ppm"), std::string("old"));
     CHECK_EQ(folder.names(), std::string("bad.txt picture.ppm"));
 }
 
@@ -393,7 +350,7 @@ TEST(a_missing_scene_file_exits_1) {
 
 TEST(an_unwritable_output_exits_3_and_writes_nothing) {
     const Scratch folder;
-    write_bytes(folder / "scene.txt", empty_scene("missing-folder/picture.ppm"));
+    write_bytes(folder.work / "scene.txt", empty_scene("missing-folder/picture.ppm"));
     const Run r = run(folder, {"scene.txt"});
     CHECK_EQ(r.status, 3);
     CHECK(contains(r.err, "missing-folder/picture.ppm"));

@@ -25,7 +25,7 @@
 #include <vector>
 
 #include "check.h"
-#include "fault_tests.h"
+#include "process_scratch.h"
 #include "raytracer/compiler.h"
 #include "raytracer/interrupts.h"
 #include "raytracer/output_file.h"
@@ -35,7 +35,7 @@
 #endif
 
 namespace fs = std::filesystem;
-using namespace fault_tests;
+using namespace process_scratch;
 
 namespace {
 

@@ -10,14 +10,14 @@
 
 #include <string>
 
-#include "fault_tests.h"
+#include "process_scratch.h"
 #include "raytracer/output_file.h"
 
 #ifndef RAYTRACER_EXE
 #error "RAYTRACER_EXE must name the raytracer.exe under test"
 #endif
 
-using namespace fault_tests;
+using namespace process_scratch;
 
 namespace {
 

@@ -1,5 +1,6 @@
-// What the fault tests of both platforms share (faults.cpp, faults_windows.cpp): a
-// fresh working folder and scenes that render fast or for seconds.
+// What the tests that run raytracer.exe as a child process share (cli.cpp, faults.cpp,
+// faults_windows.cpp): a fresh working folder, its files' bytes, and scenes that render
+// at once or for seconds.
 #pragma once
 
 #include <algorithm>
@@ -14,16 +15,17 @@
 
 #include "raytracer/compiler.h"
 
-namespace fault_tests {
+namespace process_scratch {
 
 namespace fs = std::filesystem;
 
-// A fresh working folder per test; stderr is captured beside it, not in it.
+// A fresh, empty working folder per test, inside a root of its own that also holds the
+// captured output; both removed afterwards.
 struct Scratch {
     fs::path root, work;
     Scratch() {
         std::random_device random;
-        root = fs::temp_directory_path() / ("raytracer-faults-" + std::to_string(random()));
+        root = fs::temp_directory_path() / ("raytracer-tests-" + std::to_string(random()));
         work = root / "work";
         fs::create_directories(work);
     }
@@ -33,6 +35,7 @@ struct Scratch {
         std::error_code ignored;
         fs::remove_all(root, ignored);
     }
+    // The names in the working folder, sorted, separated by spaces.
     std::string names() const {
         std::vector<std::string> all;
         for (const fs::directory_entry& e : fs::directory_iterator(work))
@@ -92,4 +95,4 @@ std::string slow_scene(const std::string& output, int res = kSlowRes) {
     return text;
 }
 
-}  // namespace fault_tests
+}  // namespace process_scratch
