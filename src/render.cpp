@@ -3,8 +3,6 @@
 // (render_tree.cpp) for every other scene.
 #include "raytracer/render.h"
 
-#include <utility>
-
 #include "raytracer/flat_sweep/render_flat_sweep.h"
 #include "raytracer/render_tree.h"
 
@@ -20,13 +18,6 @@ void render_to(const Scene& scene, RowSink& sink, unsigned threads) {
         render_tree_to<Real>(scene, sink, threads);
 }
 
-template <typename Real>
-Image render(const Scene& scene, unsigned threads) {
-    ImageSink sink(scene.columns, scene.rows);
-    render_to<Real>(scene, sink, threads);
-    return std::move(sink.image);
-}
-
 // raytracer.exe renders in double. The tests and the precision report render in float
 // and long double too: this file is compiled a second time with RAYTRACER_EXTRA_PRECISIONS
 // into raytracer_precisions (CMakeLists.txt) for those, so that the shipped program
@@ -34,11 +25,8 @@ Image render(const Scene& scene, unsigned threads) {
 #ifdef RAYTRACER_EXTRA_PRECISIONS
 template void render_to<float>(const Scene&, RowSink&, unsigned);
 template void render_to<long double>(const Scene&, RowSink&, unsigned);
-template Image render<float>(const Scene&, unsigned);
-template Image render<long double>(const Scene&, unsigned);
 #else
 template void render_to<double>(const Scene&, RowSink&, unsigned);
-template Image render<double>(const Scene&, unsigned);
 #endif
 
 }  // namespace rt

@@ -3,7 +3,6 @@
 // what the tests hold every other path to, byte for byte.
 #include <cstddef>
 #include <cstdint>
-#include <utility>
 
 #include "raytracer/reference/brute_force.h"
 #include "raytracer/reference/ellipsoid.h"
@@ -27,23 +26,13 @@ void render_reference_to(const Scene& scene, RowSink& sink, unsigned threads) {
         });
 }
 
-template <typename Real>
-Image render_reference(const Scene& scene, unsigned threads) {
-    ImageSink sink(scene.columns, scene.rows);
-    render_reference_to<Real>(scene, sink, threads);
-    return std::move(sink.image);
-}
-
 // As render.cpp: double for raytracer.exe (--reference), float and long double for the
 // tests and the precision report.
 #ifdef RAYTRACER_EXTRA_PRECISIONS
 template void render_reference_to<float>(const Scene&, RowSink&, unsigned);
 template void render_reference_to<long double>(const Scene&, RowSink&, unsigned);
-template Image render_reference<float>(const Scene&, unsigned);
-template Image render_reference<long double>(const Scene&, unsigned);
 #else
 template void render_reference_to<double>(const Scene&, RowSink&, unsigned);
-template Image render_reference<double>(const Scene&, unsigned);
 #endif
 
 }  // namespace rt

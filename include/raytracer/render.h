@@ -5,6 +5,8 @@
 // byte-identical for any number of threads.
 #pragma once
 
+#include <utility>
+
 #include "raytracer/image.h"
 #include "raytracer/row_sink.h"
 #include "raytracer/scene.h"
@@ -19,7 +21,11 @@ template <typename Real>
 void render_to(const Scene& scene, RowSink& sink, unsigned threads = 0);
 // The same, the image returned whole.
 template <typename Real>
-Image render(const Scene& scene, unsigned threads = 0);
+Image render(const Scene& scene, unsigned threads = 0) {
+    ImageSink sink(scene.columns, scene.rows);
+    render_to<Real>(scene, sink, threads);
+    return std::move(sink.image);
+}
 
 // The reference path, the specification in code: each pixel on its own through
 // reference/whitted.h with brute_force.h (every ray against every ellipsoid), which the
@@ -28,6 +34,10 @@ Image render(const Scene& scene, unsigned threads = 0);
 template <typename Real>
 void render_reference_to(const Scene& scene, RowSink& sink, unsigned threads = 0);
 template <typename Real>
-Image render_reference(const Scene& scene, unsigned threads = 0);
+Image render_reference(const Scene& scene, unsigned threads = 0) {
+    ImageSink sink(scene.columns, scene.rows);
+    render_reference_to<Real>(scene, sink, threads);
+    return std::move(sink.image);
+}
 
 }  // namespace rt
