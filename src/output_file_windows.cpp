@@ -88,7 +88,13 @@ bool replace_file(const fs::path& from, const fs::path& to, std::string& error) 
     // with every standard library, so MoveFileExW is asked to explicitly.
     if (MoveFileExW(from.c_str(), to.c_str(), MOVEFILE_REPLACE_EXISTING | MOVEFILE_WRITE_THROUGH))
         return true;
-    error = "cannot replace it (Windows error " + std::to_string(GetLastError()) + ")";
+    const DWORD code = GetLastError();
+    // A viewer that holds the image open without leave to delete it: a sharing or an
+    // access violation, by system and file system (Wine: ERROR_ACCESS_DENIED).
+    const bool in_use =
+        code == ERROR_SHARING_VIOLATION || code == ERROR_ACCESS_DENIED || code == ERROR_LOCK_VIOLATION;
+    error = std::string(in_use ? "another program may have it open" : "cannot replace it") +
+            " (Windows error " + std::to_string(code) + ")";
     return false;
 }
 

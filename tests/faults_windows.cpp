@@ -12,6 +12,7 @@
 
 #include "process_scratch.h"
 #include "raytracer/output_file.h"
+#include "run_program.h"
 
 #ifndef RAYTRACER_EXE
 #error "RAYTRACER_EXE must name the raytracer.exe under test"
@@ -59,4 +60,22 @@ TEST(a_killed_render_leaves_nothing_behind) {
     (void)CloseHandle(process.hProcess);
     CHECK_EQ(folder.names(), std::string("out.ppm slow.txt"));
     CHECK_EQ(read_bytes(folder.work / "out.ppm"), precious);
+}
+
+// An image open in another program without leave to delete it (a viewer): the render's
+// file cannot replace it. Exit 3, the system's reason, the image and folder as they were.
+TEST(an_image_held_open_by_another_program_is_not_replaced) {
+    const Scratch folder;
+    write_bytes(folder.work / "scene.txt", small_scene("out.ppm"));
+    write_bytes(folder.work / "out.ppm", "old");
+    const HANDLE held = CreateFileW((folder.work / "out.ppm").c_str(), GENERIC_READ, FILE_SHARE_READ, nullptr,
+                                    OPEN_EXISTING, FILE_ATTRIBUTE_NORMAL, nullptr);
+    CHECK(held != INVALID_HANDLE_VALUE);
+    const run_program::Result r = run_program::run(RAYTRACER_EXE, {"scene.txt"}, folder.work, folder.root);
+    (void)CloseHandle(held);
+    CHECK_EQ(r.status, 3);
+    CHECK(r.err.find("error: OUTPUT 'out.ppm' cannot be replaced: another program may have it open (Windows "
+                     "error ") != std::string::npos);
+    CHECK_EQ(folder.names(), std::string("out.ppm scene.txt"));
+    CHECK_EQ(read_bytes(folder.work / "out.ppm"), std::string("old"));
 }
