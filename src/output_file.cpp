@@ -154,9 +154,7 @@ std::string PendingFile::commit() {
         else
             error = shown(name_, kMaxShownPath) + " cannot be put in place: " + error;
     } else {
-        error = close_kept();
-        if (error.empty() && !replace_file(temporary_, target_, error))
-            error = shown(name_, kMaxShownPath) + " cannot be replaced: " + error;
+        error = put_in_place();
     }
     if (error.empty()) {
         clear_interrupt_cleanup();

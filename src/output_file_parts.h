@@ -22,7 +22,4 @@ std::filesystem::path folder_of(const std::filesystem::path& target);
 // Why a file could not be created in folder, as precisely as the file system tells.
 std::string cannot_create(const std::string& name, const std::filesystem::path& folder, int error);
 
-// Renames from over to, replacing it; on failure, false and why in error.
-bool replace_file(const std::filesystem::path& from, const std::filesystem::path& to, std::string& error);
-
 }  // namespace rt

@@ -20,11 +20,16 @@ namespace rt {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// Renames from over to, replacing it; on failure, false and why in error.
 bool replace_file(const fs::path& from, const fs::path& to, std::string& error) {
     if (std::rename(from.c_str(), to.c_str()) == 0) return true;
     error = std::strerror(errno);
     return false;
 }
+
+}  // namespace
 
 void PendingFile::open_replacement() {
     struct stat existing {};
@@ -129,11 +134,15 @@ void PendingFile::close_file() {
     open_ = false;
 }
 
-std::string PendingFile::close_kept() {
+// Closed first: a file system may report a failed write only at close (NFS).
+std::string PendingFile::put_in_place() {
     const bool closed = ::close(fd_) == 0;
     fd_ = -1;
-    if (closed) return {};
-    return shown(name_, kMaxShownPath) + " could not be written in full (is the disk full?)";
+    if (!closed) return shown(name_, kMaxShownPath) + " could not be written in full (is the disk full?)";
+    std::string error;
+    if (!replace_file(temporary_, target_, error))
+        return shown(name_, kMaxShownPath) + " cannot be replaced: " + error;
+    return {};
 }
 
 void PendingFile::write(const void* data, std::size_t size) {

@@ -1,6 +1,6 @@
 // The image's file on Windows (output_file.cpp): a named temporary that the system
-// deletes when its handle closes until commit() keeps it, renamed over the target by
-// MoveFileExW.
+// deletes when its handle closes until commit() renames it over the target through
+// that handle.
 #ifndef NOMINMAX
 #define NOMINMAX
 #endif
@@ -11,9 +11,11 @@
 #include <cerrno>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <string>
 #include <system_error>
+#include <vector>
 
 #include "output_file_parts.h"
 #include "raytracer/interrupts.h"
@@ -49,8 +51,8 @@ int errno_of(DWORD error) {
     }
 }
 
-// Whether the system deletes the file when its last handle closes: the handle's delete
-// disposition, which needs the DELETE access right.
+// Sets whether the system deletes the file when its last handle closes: the handle's
+// delete disposition, which needs the DELETE access right.
 bool set_deleted_on_close(HANDLE handle, bool deleted) {
     FILE_DISPOSITION_INFO disposition{};
     disposition.DeleteFile = deleted ? TRUE : FALSE;
@@ -81,22 +83,37 @@ FILE* create_removable(const wchar_t* path, bool& deleted_on_close) {
     return file;
 }
 
-}  // namespace
-
-bool replace_file(const fs::path& from, const fs::path& to, std::string& error) {
-    // std::filesystem::rename is not guaranteed to replace an existing file on Windows
-    // with every standard library, so MoveFileExW is asked to explicitly.
-    if (MoveFileExW(from.c_str(), to.c_str(), MOVEFILE_REPLACE_EXISTING | MOVEFILE_WRITE_THROUGH))
+// Renames the open file over target, replacing it, through its handle (which needs the
+// DELETE access right): on failure the file is still the handle's, to delete on close,
+// where a rename by name (MoveFileExW) would leave it to a removal by name that another
+// program (a virus scanner) may block. On failure, false and why in error.
+bool rename_over(HANDLE handle, const std::wstring& target, std::string& error) {
+    std::error_code ec;
+    fs::path path = fs::absolute(target, ec);
+    if (ec) path = target;
+    const std::wstring& name = path.native();
+    // FILE_RENAME_INFO ends in the name, which the system reads up to its NUL: the
+    // buffer holds one wchar_t more than the name (FileName[1]), zeroed.
+    std::vector<unsigned char> buffer(sizeof(FILE_RENAME_INFO) + name.size() * sizeof(wchar_t));
+    auto* info = reinterpret_cast<FILE_RENAME_INFO*>(buffer.data());
+    info->ReplaceIfExists = TRUE;
+    info->RootDirectory = nullptr;
+    info->FileNameLength = static_cast<DWORD>(name.size() * sizeof(wchar_t));
+    std::memcpy(info->FileName, name.c_str(), info->FileNameLength);
+    if (SetFileInformationByHandle(handle, FileRenameInfo, info, static_cast<DWORD>(buffer.size())))
         return true;
     const DWORD code = GetLastError();
     // A viewer that holds the image open without leave to delete it: a sharing or an
     // access violation, by system and file system (Wine: ERROR_ACCESS_DENIED).
     const bool in_use =
         code == ERROR_SHARING_VIOLATION || code == ERROR_ACCESS_DENIED || code == ERROR_LOCK_VIOLATION;
-    error = std::string(in_use ? "another program may have it open" : "cannot replace it") +
-            " (Windows error " + std::to_string(code) + ")";
+    error =
+        std::string(in_use ? "another program may have it open, or it is protected" : "cannot replace it") +
+        " (Windows error " + std::to_string(code) + ")";
     return false;
 }
+
+}  // namespace
 
 void PendingFile::open_replacement() {
     std::error_code ec;
@@ -139,19 +156,21 @@ void PendingFile::close_file() {
     open_ = false;
 }
 
-std::string PendingFile::close_kept() {
-    const bool flushed = std::fflush(file_) == 0;
-    const bool kept = !deleted_on_close_ ||
-                      set_deleted_on_close(reinterpret_cast<HANDLE>(_get_osfhandle(_fileno(file_))), false);
-    const DWORD keep_error = GetLastError();
-    const bool closed = std::fclose(file_) == 0;
+// Renamed while still open: the file is deleted on close until the rename is done, and
+// again if it fails. Closed unchecked: it is unbuffered (open_named()), so every byte
+// went out in write(), which checked it.
+std::string PendingFile::put_in_place() {
+    const HANDLE handle = reinterpret_cast<HANDLE>(_get_osfhandle(_fileno(file_)));
+    std::string error;
+    if (deleted_on_close_ && !set_deleted_on_close(handle, false)) {
+        error = "cannot be kept (Windows error " + std::to_string(GetLastError()) + ")";
+    } else if (!rename_over(handle, target_, error)) {
+        error = "cannot be replaced: " + error;
+        if (deleted_on_close_) (void)set_deleted_on_close(handle, true);
+    }
+    (void)std::fclose(file_);
     file_ = nullptr;
-    if (!flushed || !closed)
-        return shown(name_, kMaxShownPath) + " could not be written in full (is the disk full?)";
-    if (!kept)
-        return shown(name_, kMaxShownPath) + " cannot be kept (Windows error " + std::to_string(keep_error) +
-               ")";
-    return {};
+    return error.empty() ? error : shown(name_, kMaxShownPath) + " " + error;
 }
 
 void PendingFile::write(const void* data, std::size_t size) {

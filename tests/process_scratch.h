@@ -47,16 +47,16 @@ struct Scratch {
     }
 };
 
-std::string read_bytes(const fs::path& file) {
+inline std::string read_bytes(const fs::path& file) {
     std::ifstream in(file, std::ios::binary);
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-void write_bytes(const fs::path& file, const std::string& bytes) {
+inline void write_bytes(const fs::path& file, const std::string& bytes) {
     std::ofstream(file, std::ios::binary) << bytes;
 }
 
-std::string small_scene(const std::string& output) {
+inline std::string small_scene(const std::string& output) {
     return "NEAR 1\nLEFT -1\nRIGHT 1\nBOTTOM -1\nTOP 1\nRES 100 100\nSPHERE s 0 0 -5 1 1 1 1 0 0 0.2 0.5 0.5 "
            "0.2 "
            "10\nLIGHT l 5 5 0 1 1 1\nBACK 0.5 0.25 1\nAMBIENT 0.2 0.2 0.2\nOUTPUT " +
@@ -65,19 +65,18 @@ std::string small_scene(const std::string& output) {
 
 // 200 ellipsoids and 200 lights scattered by a fixed generator: at RES 1200, 1.4 s on the
 // build machine's two cores, 2.7 s on one, longer under the sanitizers (at RES 400 under
-// ThreadSanitizer, still seconds). The tests below signal it at most 0.25 s after its
-// start, well inside its render.
+// ThreadSanitizer, still seconds): the fault tests interrupt it well inside its render.
 #ifdef RT_UNDER_TSAN
-constexpr int kSlowRes = 400;
+inline constexpr int kSlowRes = 400;
 #else
-constexpr int kSlowRes = 1200;
+inline constexpr int kSlowRes = 1200;
 #endif
 // The size of its image: the P6 header, then 3 bytes a pixel.
-std::size_t slow_image_bytes() {
+inline std::size_t slow_image_bytes() {
     const std::string side = std::to_string(kSlowRes);
     return ("P6\n" + side + " " + side + "\n255\n").size() + std::size_t{3} * kSlowRes * kSlowRes;
 }
-std::string slow_scene(const std::string& output, int res = kSlowRes) {
+inline std::string slow_scene(const std::string& output, int res = kSlowRes) {
     std::minstd_rand random(12345);
     auto u = [&random](double lo, double hi) {
         return lo + (hi - lo) * static_cast<double>(random()) / static_cast<double>(std::minstd_rand::max());

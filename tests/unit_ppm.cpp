@@ -1,6 +1,5 @@
 // The PPM writers and reader: exact bytes, and no partial or clobbered files.
 #include <algorithm>
-#include <cerrno>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -8,7 +7,11 @@
 #include <string>
 
 #ifdef _WIN32
+#ifndef NOMINMAX
+#define NOMINMAX
+#endif
 #include <io.h>  // _wunlink
+#include <windows.h>
 #endif
 
 #include "check.h"
@@ -127,10 +130,12 @@ TEST(a_pending_file_appears_only_when_committed) {
 #ifdef _WIN32
 // An interrupt's handler removes the temporary while the render still holds it open (the
 // console's handler runs on a thread of its own, interrupts.cpp), for file systems that
-// refused to delete it on close (output_file_windows.cpp): Windows allows that only to a
-// file opened to share deletion. Where the file system took it, the file is already
-// being deleted and Windows refuses the removal (EACCES); Wine removes it. Gone once
-// closed either way, the old image untouched.
+// refuse to delete it on close (output_file_windows.cpp): Windows allows that only to a
+// file opened to share deletion. Opening it for deletion, as _wunlink does first, tells
+// the two cases apart: refused as a sharing violation without that share, refused as
+// access denied where the file is already being deleted (Windows), allowed where the
+// system still lets it be removed (Wine), which the test then does. Gone once closed
+// either way, the old image untouched.
 TEST(the_temporary_can_be_removed_while_open) {
     ScratchFolder dir;
     {
@@ -140,11 +145,20 @@ TEST(the_temporary_can_be_removed_while_open) {
     {
         rt::PendingFile file(dir.file("a.ppm").c_str());
         file.write("abc", 3);
-        int removed = 0;
-        for (const fs::directory_entry& entry : fs::directory_iterator(dir.path))
-            if (entry.path().filename() != "a.ppm")
-                removed += _wunlink(entry.path().c_str()) == 0 || errno == EACCES ? 1 : 0;
-        CHECK_EQ(removed, 1);
+        int removable = 0;
+        for (const fs::directory_entry& entry : fs::directory_iterator(dir.path)) {
+            if (entry.path().filename() == "a.ppm") continue;
+            const HANDLE handle = CreateFileW(entry.path().c_str(), DELETE,
+                                              FILE_SHARE_READ | FILE_SHARE_WRITE | FILE_SHARE_DELETE, nullptr,
+                                              OPEN_EXISTING, FILE_ATTRIBUTE_NORMAL, nullptr);
+            if (handle == INVALID_HANDLE_VALUE) {
+                removable += GetLastError() == ERROR_ACCESS_DENIED ? 1 : 0;
+            } else {
+                (void)CloseHandle(handle);
+                removable += _wunlink(entry.path().c_str()) == 0 ? 1 : 0;
+            }
+        }
+        CHECK_EQ(removable, 1);
     }
     CHECK_EQ(dir.entries(), 1U);
     CHECK_EQ(contents(dir.file("a.ppm")), std::string("old"));

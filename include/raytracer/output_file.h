@@ -68,9 +68,9 @@ private:
     bool link_unnamed(std::string& error);
     void discard();
     void close_file();
-    // Closes the complete named temporary so that it stays, to be renamed over the
-    // target; on failure, why (with the name), and the file is gone.
-    std::string close_kept();
+    // Closes the complete named temporary and renames it over the target; on failure,
+    // why (with the name), and discard() removes what is left.
+    std::string put_in_place();
     std::string write_failure() const;
     void stream_bytes_ahead() const;
     void stream_bytes_out(std::size_t size);
