@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <system_error>
 #include <utility>
+#include <vector>
 
 #include "raytracer/output_file.h"
 #include "raytracer/shown.h"
@@ -64,8 +65,57 @@ bool standard_stream_is(int stream, const std::string& file) {
 // A closed standard output has no handle at all here: writing it fails and says so.
 bool standard_output_is_folder() { return false; }
 bool is_link(const std::string&) { return false; }
-// Here MoveFileExW's own error says it, once the image is made.
-bool name_too_long(const std::string&) { return false; }
+
+// The names of a path after its root ("C:\\"); none for a path that is not UTF-8
+// (PendingFile says so).
+std::vector<fs::path> names_of(const std::string& path) {
+    std::vector<fs::path> names;
+    try {
+        for (const fs::path& part : fs::u8path(path).relative_path()) names.push_back(part);
+    } catch (const std::exception&) {
+        names.clear();
+    }
+    return names;
+}
+
+// Whether a name of the path is longer than a Windows folder allows (255 UTF-16 units).
+bool name_too_long(const std::string& path) {
+    for (const fs::path& name : names_of(path))
+        if (name.native().size() > 255) return true;
+    return false;
+}
+
+// Why Windows would refuse the path's names, or empty: characters it does not allow in a
+// name (a ':' past the drive would name a stream of another file). Said before the
+// render, not when the image is put there.
+std::string unusable_name(const std::string& path) {
+    for (const fs::path& name : names_of(path))
+        for (const char c : name.u8string())
+            if (static_cast<unsigned char>(c) < 0x20 || std::strchr("<>:\"|?*", c) != nullptr)
+                return " holds a character that Windows does not allow in a file name (< > : \" | ? * or a "
+                       "control character), expected another name";
+    return {};
+}
+
+// Whether the path's last name is one that Windows keeps for a device in every folder:
+// CON, PRN, AUX, NUL, COM0-COM9 and LPT0-LPT9 (and with a superscript 1, 2 or 3),
+// CONIN$ and CONOUT$, also before an extension ("Naming Files, Paths, and Namespaces",
+// Microsoft Learn). fs::status finds nothing there, and a rename would put the image
+// in the device's place.
+bool device_name(const std::string& path) {
+    const std::vector<fs::path> names = names_of(path);
+    if (names.empty()) return false;
+    const std::string last = names.back().u8string();
+    std::string name = last.substr(0, last.find('.'));
+    while (!name.empty() && name.back() == ' ') name.pop_back();
+    for (char& c : name) c = c >= 'a' && c <= 'z' ? static_cast<char>(c - 'a' + 'A') : c;
+    for (const char* device : {"CON", "PRN", "AUX", "NUL", "CONIN$", "CONOUT$"})
+        if (name == device) return true;
+    if (name.rfind("COM", 0) != 0 && name.rfind("LPT", 0) != 0) return false;
+    const std::string number = name.substr(3);
+    return (number.size() == 1 && number[0] >= '0' && number[0] <= '9') || number == "\xC2\xB9" ||
+           number == "\xC2\xB2" || number == "\xC2\xB3";
+}
 // Why this user may not replace the file at path, or empty: it is read-only.
 std::string unreplaceable(const std::string& path) {
     const DWORD attributes = GetFileAttributesW(fs::u8path(path).c_str());
@@ -75,6 +125,7 @@ std::string unreplaceable(const std::string& path) {
 }
 
 Existing what_is_at(const std::string& path) {
+    if (device_name(path)) return Existing::Other;
     std::error_code ec;
     const fs::file_status status = fs::status(fs::u8path(path), ec);
     if (ec || status.type() == fs::file_type::not_found) return Existing::Nothing;
@@ -126,6 +177,9 @@ bool name_too_long(const std::string& path) {
         if (::stat(name.c_str(), &s) != 0 && errno == ENAMETOOLONG) return true;
     return false;
 }
+
+// Any byte but '/' and NUL may be in a name here.
+std::string unusable_name(const std::string& /*path*/) { return {}; }
 
 // Whether this process may replace another user's file in a sticky folder: CAP_FOWNER
 // (on Linux its effective capabilities, which root in a container may lack), else root.
@@ -228,6 +282,10 @@ OutputChoice choose_output(const std::string& scene_output, const std::string* u
     if (!choice.named_by_user) {
         choice.refusal = outside_working_folder(choice.path);
         if (!choice.refusal.empty()) return choice;
+    }
+    if (const std::string why = unusable_name(choice.path); !why.empty()) {
+        choice.refusal = shown(choice.path, kMaxShownPath) + why;
+        return choice;
     }
     if (name_too_long(choice.path)) {
         choice.refusal = shown(choice.path, kMaxShownPath) + " is too long a name or path for the system (" +

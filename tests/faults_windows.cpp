@@ -9,6 +9,7 @@
 #include <windows.h>
 
 #include <string>
+#include <utility>
 
 #include "process_scratch.h"
 #include "raytracer/output_file.h"
@@ -83,4 +84,38 @@ TEST(an_image_held_open_by_another_program_is_not_replaced) {
                      "protected (Windows error ") != std::string::npos);
     CHECK_EQ(folder.names(), std::string("out.ppm scene.txt"));
     CHECK_EQ(read_bytes(folder.work / "out.ppm"), std::string("old"));
+}
+
+// Names that Windows keeps for devices (in any folder, with an extension too) and names
+// with characters it does not allow are refused before the render, with nothing created:
+// a rename would put the image in a device's place, or fail only once it is made.
+TEST(windows_device_names_and_unusable_names_are_refused_at_once) {
+    const std::string device = "is not a regular file (a device, FIFO or socket)";
+    const std::string unusable = "holds a character that Windows does not allow in a file name";
+    const std::pair<const char*, const std::string*> cases[] = {
+        {"NUL", &device},       {"con.ppm", &device}, {"sub/aux", &device},     {"Com1.txt", &device},
+        {"LPT9", &device},      {"CONOUT$", &device}, {"nul.tar.gz", &device},  {"a<b.ppm", &unusable},
+        {"a?b.ppm", &unusable}, {"a|b", &unusable},   {"out.ppm:s", &unusable}, {"a\x01z.ppm", &unusable},
+    };
+    for (const auto& [output, why] : cases) {
+        const Scratch folder;
+        fs::create_directory(folder.work / "sub");
+        write_bytes(folder.work / "scene.txt", small_scene(output));
+        const run_program::Result r =
+            run_program::run(RAYTRACER_EXE, {"scene.txt"}, folder.work, folder.root);
+        CHECK_EQ(r.status, 3);
+        CHECK(r.err.find(*why) != std::string::npos);
+        CHECK_EQ(folder.names(), std::string("scene.txt sub"));
+    }
+}
+
+// -o may name a device: NUL takes the image, as /dev/null does elsewhere.
+TEST(dash_o_nul_writes_into_the_device) {
+    const Scratch folder;
+    write_bytes(folder.work / "scene.txt", small_scene("out.ppm"));
+    const run_program::Result r =
+        run_program::run(RAYTRACER_EXE, {"-o", "NUL", "scene.txt"}, folder.work, folder.root);
+    CHECK_EQ(r.status, 0);
+    CHECK_EQ(r.err, std::string());
+    CHECK_EQ(folder.names(), std::string("scene.txt"));
 }
