@@ -158,7 +158,9 @@ void PendingFile::close_file() {
 
 // Renamed while still open: the file is deleted on close until the rename is done, and
 // again if it fails. Closed unchecked: it is unbuffered (open_named()), so every byte
-// went out in write(), which checked it.
+// went out in write(), which checked it. A file system that takes the deletion but not
+// its cancelling (some user-mode drivers had that bug) deletes the image on close: then
+// an error says so rather than nothing.
 std::string PendingFile::put_in_place() {
     const HANDLE handle = reinterpret_cast<HANDLE>(_get_osfhandle(_fileno(file_)));
     std::string error;
@@ -170,6 +172,9 @@ std::string PendingFile::put_in_place() {
     }
     (void)std::fclose(file_);
     file_ = nullptr;
+    if (error.empty() && deleted_on_close_ && GetFileAttributesW(target_.c_str()) == INVALID_FILE_ATTRIBUTES)
+        error = "was deleted by its file system as it was closed (Windows error " +
+                std::to_string(GetLastError()) + ")";
     return error.empty() ? error : shown(name_, kMaxShownPath) + " " + error;
 }
 

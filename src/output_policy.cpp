@@ -66,6 +66,24 @@ bool standard_stream_is(int stream, const std::string& file) {
 bool standard_output_is_folder() { return false; }
 bool is_link(const std::string&) { return false; }
 
+// The folder's path with the links and junctions on the way resolved: the one the system
+// gives it once opened (some standard libraries' fs::canonical leaves links as they are
+// here). False where the folder cannot be opened.
+bool resolved_folder(const fs::path& folder, fs::path& resolved) {
+    const HANDLE handle = CreateFileW(folder.c_str(), FILE_READ_ATTRIBUTES,
+                                      FILE_SHARE_READ | FILE_SHARE_WRITE | FILE_SHARE_DELETE, nullptr,
+                                      OPEN_EXISTING, FILE_FLAG_BACKUP_SEMANTICS, nullptr);
+    if (handle == INVALID_HANDLE_VALUE) return false;
+    std::wstring path(32768, L'\0');  // the longest path Windows has
+    const DWORD size = GetFinalPathNameByHandleW(handle, path.data(), static_cast<DWORD>(path.size()),
+                                                 FILE_NAME_NORMALIZED | VOLUME_NAME_DOS);
+    CloseHandle(handle);
+    if (size == 0 || size >= path.size()) return false;
+    path.resize(size);
+    resolved = path;
+    return true;
+}
+
 // The names of a path after its root ("C:\\"); none for a path that is not UTF-8
 // (PendingFile says so).
 std::vector<fs::path> names_of(const std::string& path) {
@@ -218,6 +236,12 @@ std::string unreplaceable(const std::string& path) {
     return {};
 }
 
+bool resolved_folder(const fs::path& folder, fs::path& resolved) {
+    std::error_code ec;
+    resolved = fs::canonical(folder, ec);
+    return !ec;
+}
+
 Existing what_is_at(const std::string& path) {
     struct stat s {};
     if (::stat(path.c_str(), &s) != 0) return Existing::Nothing;
@@ -246,10 +270,10 @@ std::string outside_working_folder(const std::string& output) {
     // A folder on the way may be a symbolic link out of the working folder. Asked of the
     // file system only for names with a folder (a bare file name costs nothing).
     if (path.has_parent_path()) {
-        std::error_code ec, ec2;
-        const fs::path folder = fs::canonical(path.parent_path(), ec);
-        const fs::path working = fs::canonical(fs::current_path(ec2), ec2);
-        if (!ec && !ec2) {
+        std::error_code ec;
+        const fs::path current = fs::current_path(ec);
+        fs::path folder, working;
+        if (!ec && resolved_folder(path.parent_path(), folder) && resolved_folder(current, working)) {
             const auto [mismatch, ignored] =
                 std::mismatch(working.begin(), working.end(), folder.begin(), folder.end());
             if (mismatch != working.end())

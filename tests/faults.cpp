@@ -508,7 +508,6 @@ TEST(output_naming_the_scene_through_a_link_is_refused) {
     CHECK_EQ(read_bytes(folder.work / "scene.txt"), scene);
 }
 
-// A folder on the way that is a symbolic link out of the working folder is outside it.
 // --help and --version into a full disk (or a closed stdout): exit 3 and one line, not a
 // silent success.
 TEST(help_that_cannot_be_written_is_an_error) {
@@ -541,6 +540,7 @@ TEST(standard_output_into_the_scene_file_is_refused) {
     CHECK_EQ(read_bytes(folder.work / "scene.txt"), scene);
 }
 
+// A folder on the way that is a symbolic link out of the working folder is outside it.
 TEST(a_symbolic_link_out_of_the_working_folder_is_outside_it) {
     const Scratch folder;
     fs::create_directories(folder.root / "elsewhere");

@@ -30,6 +30,16 @@ bool has_temporary(const fs::path& folder) {
     return false;
 }
 
+#ifndef RAYTRACER_HOST_FOLDER_LINKS
+// A symbolic link to a folder (the standard library of MinGW makes none).
+bool folder_link(const fs::path& target, const fs::path& link) {
+    constexpr DWORD kUnprivileged = 0x2;  // SYMBOLIC_LINK_FLAG_ALLOW_UNPRIVILEGED_CREATE
+    return CreateSymbolicLinkW(link.c_str(), target.c_str(), SYMBOLIC_LINK_FLAG_DIRECTORY | kUnprivileged) !=
+           0;
+}
+
+#endif
+
 }  // namespace
 
 // TerminateProcess runs no code of the program's: only the system can remove the
@@ -118,4 +128,38 @@ TEST(dash_o_nul_writes_into_the_device) {
     CHECK_EQ(r.status, 0);
     CHECK_EQ(r.err, std::string());
     CHECK_EQ(folder.names(), std::string("scene.txt"));
+}
+
+// A folder on the way that is a link out of the working folder (a symbolic link or a
+// junction) is outside it: the folder as the system opens it is compared. The links are
+// made here, or under Wine by the host (folder_links.cmake).
+TEST(a_folder_link_out_of_the_working_folder_is_outside_it) {
+#ifdef RAYTRACER_HOST_FOLDER_LINKS
+    const fs::path root = RAYTRACER_HOST_FOLDER_LINKS, work = root / "work";
+#else
+    const Scratch folder;
+    const fs::path &root = folder.root, &work = folder.work;
+    fs::create_directories(root / "elsewhere");
+    fs::create_directories(work / "inside");
+    // Without developer mode or the privilege, Windows refuses a symbolic link.
+    if (!folder_link(root / "elsewhere", work / "escape")) {
+        std::cout << "skip  folder links: this user may not make symbolic links (Windows error "
+                  << GetLastError() << ")\n";
+        return;
+    }
+    CHECK(folder_link(work / "inside", work / "alias"));
+#endif
+    write_bytes(work / "scene.txt", small_scene("escape/out.ppm"));
+    run_program::Result r = run_program::run(RAYTRACER_EXE, {"scene.txt"}, work, root);
+    CHECK_EQ(r.status, 3);
+    CHECK(r.err.find("OUTPUT 'escape/out.ppm' leaves the working folder through a symbolic link") !=
+          std::string::npos);
+    CHECK(fs::is_empty(root / "elsewhere"));
+    r = run_program::run(RAYTRACER_EXE, {"scene.txt", "-o", "escape/out.ppm"}, work, root);
+    CHECK_EQ(r.status, 0);  // the user may
+    CHECK(fs::exists(root / "elsewhere" / "out.ppm"));
+    write_bytes(work / "scene.txt", small_scene("alias/out.ppm"));  // a link that stays inside
+    r = run_program::run(RAYTRACER_EXE, {"scene.txt"}, work, root);
+    CHECK_EQ(r.status, 0);
+    CHECK(fs::exists(work / "inside" / "out.ppm"));
 }
