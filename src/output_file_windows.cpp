@@ -88,8 +88,12 @@ FILE* create_removable(const wchar_t* path, bool& deleted_on_close) {
 // where a rename by name (MoveFileExW) would leave it to a removal by name that another
 // program (a virus scanner) may block. On failure, false and why in error.
 bool rename_over(HANDLE handle, const std::wstring& target, std::string& error) {
+    // A full path (the system reads a relative one differently), but for one in the
+    // \\?\ namespace, which libstdc++'s fs::absolute() takes for relative and mangles
+    // (\\?\C:\x into C:\?\C:\x).
+    fs::path path = target;
     std::error_code ec;
-    fs::path path = fs::absolute(target, ec);
+    if (target.rfind(L"\\\\?\\", 0) != 0) path = fs::absolute(path, ec);
     if (ec) path = target;
     const std::wstring& name = path.native();
     // FILE_RENAME_INFO ends in the name, which the system reads up to its NUL: the

@@ -105,8 +105,10 @@ bool name_too_long(const std::string& path) {
 
 // Why Windows would refuse the path's names, or empty: characters it does not allow in a
 // name (a ':' past the drive would name a stream of another file). Said before the
-// render, not when the image is put there.
+// render, not when the image is put there. A path in Windows' own namespaces (\\?\C:\...,
+// \\.\NUL: -o only) is the system's to judge.
 std::string unusable_name(const std::string& path) {
+    if (path.rfind("\\\\?\\", 0) == 0 || path.rfind("\\\\.\\", 0) == 0) return {};
     for (const fs::path& name : names_of(path))
         for (const char c : name.u8string())
             if (static_cast<unsigned char>(c) < 0x20 || std::strchr("<>:\"|?*", c) != nullptr)
@@ -134,6 +136,7 @@ bool device_name(const std::string& path) {
     return (number.size() == 1 && number[0] >= '0' && number[0] <= '9') || number == "\xC2\xB9" ||
            number == "\xC2\xB2" || number == "\xC2\xB3";
 }
+
 // Why this user may not replace the file at path, or empty: it is read-only.
 std::string unreplaceable(const std::string& path) {
     const DWORD attributes = GetFileAttributesW(fs::u8path(path).c_str());

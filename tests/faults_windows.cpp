@@ -119,15 +119,24 @@ TEST(windows_device_names_and_unusable_names_are_refused_at_once) {
     }
 }
 
-// -o may name a device: NUL takes the image, as /dev/null does elsewhere.
-TEST(dash_o_nul_writes_into_the_device) {
+// -o may name a device: NUL takes the image, as /dev/null does elsewhere, also by its
+// name in the device namespace; and a path in the \\?\ namespace is a file like any.
+TEST(dash_o_writes_into_devices_and_takes_raw_paths) {
     const Scratch folder;
     write_bytes(folder.work / "scene.txt", small_scene("out.ppm"));
+    for (const char* device : {"NUL", "\\\\.\\NUL"}) {
+        const run_program::Result r =
+            run_program::run(RAYTRACER_EXE, {"-o", device, "scene.txt"}, folder.work, folder.root);
+        CHECK_EQ(r.status, 0);
+        CHECK_EQ(r.err, std::string());
+        CHECK_EQ(folder.names(), std::string("scene.txt"));
+    }
+    const std::string raw = "\\\\?\\" + fs::absolute(folder.work / "raw.ppm").string();
     const run_program::Result r =
-        run_program::run(RAYTRACER_EXE, {"-o", "NUL", "scene.txt"}, folder.work, folder.root);
+        run_program::run(RAYTRACER_EXE, {"-o", raw, "scene.txt"}, folder.work, folder.root);
     CHECK_EQ(r.status, 0);
     CHECK_EQ(r.err, std::string());
-    CHECK_EQ(folder.names(), std::string("scene.txt"));
+    CHECK_EQ(folder.names(), std::string("raw.ppm scene.txt"));
 }
 
 // A folder on the way that is a link out of the working folder (a symbolic link or a
