@@ -1,6 +1,8 @@
 // Faults around a render on Windows, on the real raytracer.exe started as a child
-// process (faults.cpp holds POSIX's): a render killed mid-way, as by Task Manager or a
-// closed console window, leaves no temporary behind and an existing image as it was.
+// process (faults.cpp holds POSIX's): a render killed mid-way (as by Task Manager or a
+// closed console window), an image another program holds open, names Windows keeps for
+// devices or cannot hold, -o into devices and raw paths, and folder links out of the
+// working folder.
 #include "check.h"
 
 #ifndef NOMINMAX
@@ -37,7 +39,6 @@ bool folder_link(const fs::path& target, const fs::path& link) {
     return CreateSymbolicLinkW(link.c_str(), target.c_str(), SYMBOLIC_LINK_FLAG_DIRECTORY | kUnprivileged) !=
            0;
 }
-
 #endif
 
 }  // namespace
