@@ -263,6 +263,9 @@ std::string outside_working_folder(const std::string& output) {
     } catch (const std::exception&) {
         return shown(output, kMaxShownPath) + " is not a usable file name, expected a file name";
     }
+    if (path.has_root_name() && !path.has_root_directory())  // C:out.ppm, on Windows
+        return shown(output, kMaxShownPath) +
+               " names a drive, expected a file name in or below the working folder" + elsewhere;
     if (path.is_absolute() || path.has_root_name() || path.has_root_directory())
         return shown(output, kMaxShownPath) +
                " is an absolute path, expected a file name in or below the working folder" + elsewhere;

@@ -171,7 +171,12 @@ TEST(a_scene_may_not_write_outside_the_working_folder) {
         {"../outside.ppm", "leaves the working folder ('..')"},
         {"sub/../../outside.ppm", "leaves the working folder ('..')"},
         {"scene.txt", "'scene.txt' is the scene file itself"},
-        {"./scene.txt", "is the scene file itself"}};
+        {"./scene.txt", "is the scene file itself"},
+#ifdef _WIN32
+        {"C:outside.ppm",
+         "'C:outside.ppm' names a drive, expected a file name in or below the working folder"},
+#endif
+    };
     fs::create_directories(folder.work / "sub");
     for (const auto& [output, message] : refused) {
         const std::string scene = empty_scene(output);
