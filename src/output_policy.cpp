@@ -266,7 +266,7 @@ std::string outside_working_folder(const std::string& output) {
     if (path.has_root_name() && !path.has_root_directory())  // C:out.ppm, on Windows
         return shown(output, kMaxShownPath) +
                " names a drive, expected a file name in or below the working folder" + elsewhere;
-    if (path.is_absolute() || path.has_root_name() || path.has_root_directory())
+    if (path.has_root_directory())  // the absolute paths: /x, C:\x, \\server\share
         return shown(output, kMaxShownPath) +
                " is an absolute path, expected a file name in or below the working folder" + elsewhere;
     for (const fs::path& part : path)

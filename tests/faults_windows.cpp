@@ -12,6 +12,7 @@
 
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "process_scratch.h"
 #include "raytracer/output_file.h"
@@ -40,6 +41,12 @@ bool folder_link(const fs::path& target, const fs::path& link) {
            0;
 }
 #endif
+
+// raytracer.exe with these arguments in work, its output captured in root.
+run_program::Result run(const fs::path& work, const fs::path& root,
+                        const std::vector<std::string>& arguments) {
+    return run_program::run(RAYTRACER_EXE, arguments, work, root);
+}
 
 }  // namespace
 
@@ -88,7 +95,7 @@ TEST(an_image_held_open_by_another_program_is_not_replaced) {
     const HANDLE held = CreateFileW((folder.work / "out.ppm").c_str(), GENERIC_READ, FILE_SHARE_READ, nullptr,
                                     OPEN_EXISTING, FILE_ATTRIBUTE_NORMAL, nullptr);
     CHECK(held != INVALID_HANDLE_VALUE);
-    const run_program::Result r = run_program::run(RAYTRACER_EXE, {"scene.txt"}, folder.work, folder.root);
+    const run_program::Result r = run(folder.work, folder.root, {"scene.txt"});
     (void)CloseHandle(held);
     CHECK_EQ(r.status, 3);
     CHECK(r.err.find("error: OUTPUT 'out.ppm' cannot be replaced: another program may have it open, or it is "
@@ -112,8 +119,7 @@ TEST(windows_device_names_and_unusable_names_are_refused_at_once) {
         const Scratch folder;
         fs::create_directory(folder.work / "sub");
         write_bytes(folder.work / "scene.txt", small_scene(output));
-        const run_program::Result r =
-            run_program::run(RAYTRACER_EXE, {"scene.txt"}, folder.work, folder.root);
+        const run_program::Result r = run(folder.work, folder.root, {"scene.txt"});
         CHECK_EQ(r.status, 3);
         CHECK(r.err.find(*why) != std::string::npos);
         CHECK_EQ(folder.names(), std::string("scene.txt sub"));
@@ -126,15 +132,13 @@ TEST(dash_o_writes_into_devices_and_takes_raw_paths) {
     const Scratch folder;
     write_bytes(folder.work / "scene.txt", small_scene("out.ppm"));
     for (const char* device : {"NUL", "\\\\.\\NUL"}) {
-        const run_program::Result r =
-            run_program::run(RAYTRACER_EXE, {"-o", device, "scene.txt"}, folder.work, folder.root);
+        const run_program::Result r = run(folder.work, folder.root, {"-o", device, "scene.txt"});
         CHECK_EQ(r.status, 0);
         CHECK_EQ(r.err, std::string());
         CHECK_EQ(folder.names(), std::string("scene.txt"));
     }
     const std::string raw = "\\\\?\\" + fs::absolute(folder.work / "raw.ppm").string();
-    const run_program::Result r =
-        run_program::run(RAYTRACER_EXE, {"-o", raw, "scene.txt"}, folder.work, folder.root);
+    const run_program::Result r = run(folder.work, folder.root, {"-o", raw, "scene.txt"});
     CHECK_EQ(r.status, 0);
     CHECK_EQ(r.err, std::string());
     CHECK_EQ(folder.names(), std::string("raw.ppm scene.txt"));
@@ -160,16 +164,16 @@ TEST(a_folder_link_out_of_the_working_folder_is_outside_it) {
     CHECK(folder_link(work / "inside", work / "alias"));
 #endif
     write_bytes(work / "scene.txt", small_scene("escape/out.ppm"));
-    run_program::Result r = run_program::run(RAYTRACER_EXE, {"scene.txt"}, work, root);
+    run_program::Result r = run(work, root, {"scene.txt"});
     CHECK_EQ(r.status, 3);
     CHECK(r.err.find("OUTPUT 'escape/out.ppm' leaves the working folder through a symbolic link") !=
           std::string::npos);
     CHECK(fs::is_empty(root / "elsewhere"));
-    r = run_program::run(RAYTRACER_EXE, {"scene.txt", "-o", "escape/out.ppm"}, work, root);
+    r = run(work, root, {"scene.txt", "-o", "escape/out.ppm"});
     CHECK_EQ(r.status, 0);  // the user may
     CHECK(fs::exists(root / "elsewhere" / "out.ppm"));
     write_bytes(work / "scene.txt", small_scene("alias/out.ppm"));  // a link that stays inside
-    r = run_program::run(RAYTRACER_EXE, {"scene.txt"}, work, root);
+    r = run(work, root, {"scene.txt"});
     CHECK_EQ(r.status, 0);
     CHECK(fs::exists(work / "inside" / "out.ppm"));
 }
