@@ -26,9 +26,10 @@ constexpr std::size_t kReadInPiecesBytes = std::size_t{4} << 20;
 }  // namespace
 
 Scene load_scene(const std::string& path, unsigned threads_wanted) {
-    // C stdio rather than an ifstream, and the file system asked only when the file
-    // cannot be read: an ifstream's first use sets up locale facets, and the two status
-    // queries cost system calls; together 0.1 ms of a 2 ms run (docs/speed.md).
+    // C stdio rather than an ifstream, and the file system asked for the file's size
+    // alone unless it cannot be read: an ifstream's first use sets up locale facets, and
+    // the status queries of cannot_read() cost system calls; together 0.1 ms of a 2 ms run
+    // (docs/speed.md).
     auto cannot_read = [&path](bool opened, int error) {
         std::error_code ec;
         // Where a folder opens (Linux), reading it fails.

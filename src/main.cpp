@@ -100,7 +100,9 @@ void keep_standard_streams_apart() {
 #endif
 }
 
-int render(const rt::CommandLine& line, const rt::Scene& scene) {
+// The scene rendered into its output (chosen, checked, then replaced only when complete):
+// the exit status.
+int write_image(const rt::CommandLine& line, const rt::Scene& scene) {
     const rt::OutputChoice output =
         rt::choose_output(scene.output, line.output_given ? &line.output : nullptr, line.scene_file);
     if (!output.refusal.empty()) return cannot_write(line.scene_file, scene, output, output.refusal);
@@ -168,7 +170,7 @@ int main(int argc, char** argv) {
         rt::Scene scene = rt::load_scene(line.scene_file, line.threads);
         rt::bring_lengths_near_one(scene);  // a scene drawn at 1e160 renders as at 1
         size = {true, scene.columns, scene.rows, scene.spheres.size(), scene.lights.size()};
-        return render(line, scene);
+        return write_image(line, scene);
     } catch (const rt::SceneError& e) {
         std::fprintf(stderr, "%s\n", e.what());
         return kBadScene;

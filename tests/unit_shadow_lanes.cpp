@@ -1,4 +1,4 @@
-// The shadow tests of a packet's lanes at once (PacketTracer::shadow_lanes()):
+// The shadow tests of a packet's lanes at once (PacketTracer::lit_lanes()):
 // prefilter_shadow_lanes() must never answer blocked or clear against
 // intersect()'s answer, and Enclosures::contains_segments() must give every lane
 // contains_segment()'s, for random rays and for rays built to lie at the prefilter's

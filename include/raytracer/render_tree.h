@@ -1,6 +1,7 @@
 // The tree's path: the reference's shading (whitted.h) a tile at a time, with the
 // acceleration layer (bvh.h) answering the geometry queries. render_to() takes it for
-// scenes beyond the flat sweep's range (takes_the_tree()).
+// scenes beyond the flat sweep's range (takes_the_tree()) and for those the flat sweep
+// declines (render_flat_sweep_to()).
 #pragma once
 
 #include "raytracer/row_sink.h"

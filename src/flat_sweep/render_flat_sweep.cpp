@@ -150,9 +150,9 @@ public:
         return Workspace<Real>(tracer_, tracer_.screen_rects().size(), scene_.columns);
     }
 
-    // Renders bands until none is left; after_row(r) after each, r its last row.
-    template <typename AfterRow>
-    void take_rows(Workspace<Real>& work, AfterRow after_row) {
+    // Renders bands until none is left; after_band(r) after each, r its last row.
+    template <typename AfterBand>
+    void take_rows(Workspace<Real>& work, AfterBand after_band) {
         for (int r = next_row_.fetch_add(kTileRows); r < scene_.rows; r = next_row_.fetch_add(kTileRows)) {
             const int end = std::min(r + kTileRows, scene_.rows);
             ring_.reserve(end);
@@ -162,7 +162,7 @@ public:
             for (int row = r; row < end; ++row) eye_hits(row, band, work);
             shade(band, work);
             for (int f = r; f < end; ++f) ring_.finish(f);
-            after_row(end - 1);
+            after_band(end - 1);
         }
     }
 
@@ -224,7 +224,7 @@ private:
                     const std::uint32_t i = hits.ellipsoid[column];
                     if (i == kNoEllipsoid) continue;  // the background
                     // An ambient-only surface's bytes are known: no packet.
-                    if (const std::uint8_t* bytes = tracer_.flat_bytes(i)) {
+                    if (const std::uint8_t* bytes = tracer_.ambient_only_bytes(i)) {
                         std::copy(bytes, bytes + 3, row_out + column * 3);
                         continue;
                     }
@@ -272,18 +272,20 @@ void sweep_rows(FlatSweep<Real>& sweep, const Scene& scene, unsigned threads, un
     // than worth_helping(): scenes with few lit pixels are done sooner than a second
     // thread pays (measured in docs/speed.md).
     if (threads > 1) call_helpers(threads);
+    bool helpers_decided = threads != 0;  // asked for, or judged worth calling in already
     Workspace<Real> work = sweep.workspace();
     const auto start = std::chrono::steady_clock::now();
     const auto worth = worth_helping();
     sweep.take_rows(work, [&](int r) {
-        if (threads != 0) return;
+        if (helpers_decided) return;
         // Alone, this thread has done rows 0..r. Not judged on its first eighth of
         // worth_helping() (cold caches): a scene done by then never asks.
         const int done = r + 1, left = scene.rows - done;
         const auto elapsed = std::chrono::steady_clock::now() - start;
         if (left > 0 && elapsed * 8 >= worth && elapsed * left >= worth * done) {
-            threads = most_threads;
-            if (threads > 1) call_helpers(std::min<unsigned>(threads, static_cast<unsigned>(left + 1)));
+            helpers_decided = true;
+            if (most_threads > 1)
+                call_helpers(std::min<unsigned>(most_threads, static_cast<unsigned>(left + 1)));
         }
     });
     helpers.finish();

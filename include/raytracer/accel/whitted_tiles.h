@@ -43,15 +43,17 @@ public:
         std::vector<V> lights(tracer.light_count());
         for (std::size_t li = 0; li < lights.size(); ++li) lights[li] = tracer.light_position(li);
         shells_ = LightShells<Real>(tracer.geometry(), lights);
-        pixel_bytes(tracer.background(), background_);
-        for (int c = 0; c < kSpanColumns; ++c) std::memcpy(background_row_ + 3 * c, background_, 3);
-        // An eye ray that sees an ellipsoid no light nor mirror adds to (Kd = Ks = Kr = 0)
-        // gets its ambient term's bytes, known before any pixel (Whitted::shade()).
-        flat_.resize(tracer.ellipsoid_count());
-        for (std::uint32_t i = 0; i < flat_.size(); ++i) {
+        std::uint8_t background[3];
+        pixel_bytes(tracer.background(), background);
+        for (int c = 0; c < kSpanColumns; ++c) std::memcpy(background_row_ + 3 * c, background, 3);
+        // An eye ray that sees an ellipsoid no light nor mirror adds to (no_lighting()
+        // and Kr = 0) gets its ambient term's bytes, known before any pixel
+        // (Whitted::shade()).
+        ambient_only_.resize(tracer.ellipsoid_count());
+        for (std::uint32_t i = 0; i < ambient_only_.size(); ++i) {
             const typename Tracer::Material& m = tracer.material(i);
-            flat_[i].is = m.no_lighting && !(tracer.geometry().ellipsoid(i).kr > 0);
-            pixel_bytes(m.ambient, flat_[i].bytes);
+            ambient_only_[i].is = m.no_lighting && !(tracer.geometry().ellipsoid(i).kr > 0);
+            pixel_bytes(m.ambient, ambient_only_[i].bytes);
         }
     }
 
@@ -141,8 +143,8 @@ private:
                     eye.hit[k] = rays.hit(b, c - first);
                     if (!eye.hit[k].found()) continue;
                     std::uint8_t* const bytes = out[b] + std::ptrdiff_t{3} * c;
-                    if (const Flat& flat = flat_[eye.hit[k].ellipsoid]; flat.is) {
-                        std::memcpy(bytes, flat.bytes, 3);
+                    if (const AmbientOnly& a = ambient_only_[eye.hit[k].ellipsoid]; a.is) {
+                        std::memcpy(bytes, a.bytes, 3);
                         continue;
                     }
                     eye.direction[k] = {column_x[c], y[b], tracer_.near_z()};
@@ -157,19 +159,17 @@ private:
     }
 
     // Whitted::trace() for each lane in lanes of a bounce of mirrored rays (depth >= 1,
-    // which see black where they miss): shade() of what they hit; the lanes whose rays hit
-    // something.
-    unsigned trace(int depth, unsigned lanes, Scratch& scratch) const {
+    // which see black where they miss): shade() of what they hit.
+    void trace(int depth, unsigned lanes, Scratch& scratch) const {
         Bounce& b = scratch.bounces[static_cast<std::size_t>(depth)];
         tracer_.geometry().closest(b.origin, b.direction, lanes, kReflectedRayMinT, b.hit);
-        return shade(depth, lanes, scratch);
+        shade(depth, lanes, scratch);
     }
 
     // Whitted::shade() for each lane in lanes of bounce `depth` (0: the eye rays, which
-    // see BACK where they miss) given b.hit: its rays' colours; the lanes whose rays hit
-    // something. Its arithmetic for all lanes (shading.h over Lanes, a chunk at a time),
-    // its branches as lane sets.
-    unsigned shade(int depth, unsigned lanes, Scratch& scratch) const {
+    // see BACK where they miss) given b.hit: its rays' colours. Its arithmetic for all
+    // lanes (shading.h over Lanes, a chunk at a time), its branches as lane sets.
+    void shade(int depth, unsigned lanes, Scratch& scratch) const {
         Bounce& b = scratch.bounces[static_cast<std::size_t>(depth)];
         const HitLanes h = gather(b, lanes, depth < kMaxReflections);
         const Vec3<Q> miss = Vec3<Q>::from(depth == 0 ? tracer_.background() : V{});
@@ -188,10 +188,10 @@ private:
             for (int s = 0; s < shells_.count(); ++s)
                 in_shell[s] |= static_cast<unsigned>(shells_.holding(s, c.surface.point) << (i * kChunk));
         }
-        if (h.hits == 0) return 0;
+        if (h.hits == 0) return;
         for (std::size_t li = 0; li < tracer_.light_count() && h.lit != 0; ++li)
             add_light_lanes(b, h, li, in_shell);
-        if (h.reflecting == 0) return h.hits;
+        if (h.reflecting == 0) return;
         Bounce& next = scratch.bounces[static_cast<std::size_t>(depth) + 1];
         for (int i = 0; i < kChunks; ++i) {
             const LaneBits mirrors = part(h.reflecting, i);
@@ -208,7 +208,6 @@ private:
             Chunk& c = b.chunk[i];
             if (mirrors != 0) c.colour = select(mirrors, c.colour + next.chunk[i].colour * c.kr, c.colour);
         }
-        return h.hits;
     }
 
     // The lanes of a bounce that hit something, that some light may reach (Kd or Ks
@@ -329,13 +328,12 @@ private:
     const Tracer& tracer_;
     LightShells<Real> shells_;  // the ellipsoids that hold a light
     BlockerHints hints_;        // where each shadow query starts
-    struct Flat {
-        bool is = false;        // Kd = Ks = Kr = 0
+    struct AmbientOnly {
+        bool is = false;        // no_lighting() and Kr = 0
         std::uint8_t bytes[3];  // and then its pixels' bytes
     };
-    std::vector<Flat> flat_;                         // per ellipsoid
-    std::uint8_t background_[3];                     // the bytes of BACK
-    std::uint8_t background_row_[3 * kSpanColumns];  // and a span's row of them
+    std::vector<AmbientOnly> ambient_only_;          // per ellipsoid
+    std::uint8_t background_row_[3 * kSpanColumns];  // a span's row of BACK's bytes
 };
 
 }  // namespace rt

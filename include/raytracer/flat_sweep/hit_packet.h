@@ -11,7 +11,7 @@
 // at once spills them, and measured 15-20% slower here (the course scenes and the heavy
 // scene, one thread).
 //
-// Shadow rays are PacketTracer::shadow_lanes()'s, and what each mirrored ray hits is
+// Shadow rays are PacketTracer::lit_lanes()'s, and what each mirrored ray hits is
 // PacketTracer::nearest_hits()'s (packet_shading.h).
 #pragma once
 

@@ -1,6 +1,6 @@
 // The flat sweep's packets, members of PacketTracer (packet_tracer.h) defined here: the colours of up
-// to kPacket hits on one ellipsoid (hit_colours()), their shadow rays to one light tested
-// together (shadow_lanes()), and their mirrored rays' nearest hits found together
+// to kPacket hits on one ellipsoid (hit_colours()), the lanes one light reaches, their shadow
+// rays tested together (lit_lanes()), and their mirrored rays' nearest hits found together
 // (nearest_hits()) and shaded in packets again (reflections()). Each lane gets the
 // reference's bytes for its pixel (whitted.h; docs/speed.md says why for each shortcut).
 #pragma once
@@ -110,14 +110,14 @@ void PacketTracer<Real>::shadow_batch(const HitPacket<Real, N>& p, const PacketP
     }
     for (std::size_t b = 0; b < size; ++b)
         if (lit_any[b])
-            lit_any[b] = shadow_lanes<N, Set>(p, batch[b], i, first + b, may_block[b], place.self_within,
-                                              scratch) != 0;
+            lit_any[b] =
+                lit_lanes<N, Set>(p, batch[b], i, first + b, may_block[b], place.self_within, scratch) != 0;
 }
 
 // The colours (Whitted::shade(), whitted.h) of up to N rays that hit ellipsoid i, ray k
 // from (ox, oy, oz)[k] along (dx, dy, dz)[k] at t[k] (hit_packet.h): the same
 // operations lane by lane; shadow rays are tested for all lanes at once
-// (shadow_lanes()), what the mirrored rays hit is found for all lanes at once
+// (lit_lanes()), what the mirrored rays hit is found for all lanes at once
 // (nearest_hits()), and the mirrored rays are shaded in packets again, grouped by the
 // ellipsoid they hit.
 template <typename Real>
@@ -169,8 +169,8 @@ void PacketTracer<Real>::hit_colours(std::uint32_t i, int count, const Real* ox,
     for (int k = 0; k < count; ++k) colours[k] = {p.r[k], p.g[k], p.b[k]};
 }
 
-// Whether the shadow rays of the lanes of a packet with light li in front (l.front)
-// are blocked: sets l.lit to the lanes not shadowed and returns them.
+// The lanes of a packet with light li in front (l.front) that the light reaches, their
+// shadow rays tested together: sets l.lit to them and returns them.
 //
 // WHY: each candidate ellipsoid is tried on all lanes at once with prefilter_shadow_lanes()
 // (vector instructions), and intersect() runs only for the rare lanes it is unsure
@@ -185,9 +185,9 @@ void PacketTracer<Real>::hit_colours(std::uint32_t i, int count, const Real* ox,
 // self_within: the lanes whose points Enclosures::points_within() ellipsoid self.
 template <typename Real>
 template <int N, typename Set>
-std::uint64_t PacketTracer<Real>::shadow_lanes(const HitPacket<Real, N>& p, LightLanes<Real, N>& l,
-                                               std::uint32_t self, std::size_t li, Set may_block,
-                                               std::uint64_t self_within, TraceScratch<Real>& scratch) const {
+std::uint64_t PacketTracer<Real>::lit_lanes(const HitPacket<Real, N>& p, LightLanes<Real, N>& l,
+                                            std::uint32_t self, std::size_t li, Set may_block,
+                                            std::uint64_t self_within, TraceScratch<Real>& scratch) const {
     using Bits = std::uint64_t;  // bit k for lane k
     // Selects of these constants rather than shifts by k: GCC then vectorises the
     // loops below.

@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
-#include <utility>
 #include <vector>
 
 #include "raytracer/flat_sweep/bounding_sphere.h"
@@ -60,14 +59,14 @@ public:
         // hit_colours()).
         for (const Ellipsoid<Real>& e : ellipsoids_) {
             Surface surface{ambient_term(ambient, e), no_lighting(e), false, {}};
-            surface.flat = surface.no_lighting && !(e.kr > 0);
+            surface.ambient_only = surface.no_lighting && !(e.kr > 0);
             pixel_bytes(surface.ambient, surface.bytes);
             surfaces_.push_back(surface);
         }
         bounds_ = SphereBounds<Real>(ellipsoids_);
         for (const Ellipsoid<Real>& e : ellipsoids_) eye_origin_.push_back(mapped_origin(e, V{}));
         enclosures_ = Enclosures<Real>(ellipsoids_, light_positions);
-        // Shadow rays are tested a packet at a time (shadow_lanes()) and no other way, so
+        // Shadow rays are tested a packet at a time (lit_lanes()) and no other way, so
         // the flat sweep renders a scene only where that pays (can_render(); the tree
         // takes the others): where the image has at least as many pixels as there are
         // pairs of ellipsoids (its tables are made per scene, the image's shadow rays
@@ -141,9 +140,9 @@ public:
         for (int k = 0; k < count; ++k) pixel_bytes(colours[k], out[k]);
     }
     // The bytes of every pixel that sees ellipsoid i where its colour is its ambient term
-    // alone (Kd = Ks = Kr = 0: no light nor mirror adds to it), else nullptr.
-    const std::uint8_t* flat_bytes(std::uint32_t i) const {
-        return surfaces_[i].flat ? surfaces_[i].bytes : nullptr;
+    // alone (no light nor mirror adds to it: no_lighting() and Kr = 0), else nullptr.
+    const std::uint8_t* ambient_only_bytes(std::uint32_t i) const {
+        return surfaces_[i].ambient_only ? surfaces_[i].bytes : nullptr;
     }
     // The same as colours (before conversion to bytes).
     void eye_hit_colours(std::uint32_t i, int count, const Real* dx, const Real* dy, const Real* dz,
@@ -207,9 +206,9 @@ private:
                       std::size_t first, std::size_t size, LightLanes<Real, N>* batch, bool* lit_any,
                       TraceScratch<Real>& scratch) const;
     template <int N, typename Set>
-    std::uint64_t shadow_lanes(const HitPacket<Real, N>& p, LightLanes<Real, N>& l, std::uint32_t self,
-                               std::size_t li, Set may_block, std::uint64_t self_within,
-                               TraceScratch<Real>& scratch) const;
+    std::uint64_t lit_lanes(const HitPacket<Real, N>& p, LightLanes<Real, N>& l, std::uint32_t self,
+                            std::size_t li, Set may_block, std::uint64_t self_within,
+                            TraceScratch<Real>& scratch) const;
     template <int N>
     void reflections(HitPacket<Real, N>& p, Real kr, int reflections_left, TraceScratch<Real>& scratch) const;
 
@@ -225,8 +224,8 @@ private:
     std::vector<PointLight<Real>> lights_;
     struct Surface {
         V ambient;              // Ka * Ia * O
-        bool no_lighting;       // Kd = Ks = 0 (and pow finite): no light adds anything
-        bool flat;              // no_lighting and Kr = 0: the colour is the ambient term
+        bool no_lighting;       // no_lighting(): no light adds anything
+        bool ambient_only;      // no_lighting and Kr = 0: the colour is the ambient term
         std::uint8_t bytes[3];  // to_byte() of the ambient term
     };
     std::vector<Surface> surfaces_;  // per ellipsoid

@@ -27,7 +27,7 @@ public:
     // What shading needs of an ellipsoid beyond it and its Finish (finish_of()).
     struct Material {
         V ambient;         // Ka * Ia * O
-        bool no_lighting;  // Kd = Ks = 0: no light adds anything
+        bool no_lighting;  // no_lighting(): no light adds anything
     };
 
     // geometry: over make_ellipsoids<Real>(scene).
