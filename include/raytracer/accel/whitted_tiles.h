@@ -46,14 +46,12 @@ public:
         std::uint8_t background[3];
         pixel_bytes(tracer.background(), background);
         for (int c = 0; c < kSpanColumns; ++c) std::memcpy(background_row_ + 3 * c, background, 3);
-        // An eye ray that sees an ellipsoid no light nor mirror adds to (no_lighting()
-        // and Kr = 0) gets its ambient term's bytes, known before any pixel
-        // (Whitted::shade()).
+        // An eye ray that sees an ellipsoid no light nor mirror adds to (ambient_only())
+        // gets its ambient term's bytes, known before any pixel (Whitted::shade()).
         ambient_only_.resize(tracer.ellipsoid_count());
         for (std::uint32_t i = 0; i < ambient_only_.size(); ++i) {
-            const typename Tracer::Material& m = tracer.material(i);
-            ambient_only_[i].is = m.no_lighting && !(tracer.geometry().ellipsoid(i).kr > 0);
-            pixel_bytes(m.ambient, ambient_only_[i].bytes);
+            ambient_only_[i].is = ambient_only(tracer.geometry().ellipsoid(i));
+            pixel_bytes(tracer.material(i).ambient, ambient_only_[i].bytes);
         }
     }
 
@@ -329,7 +327,7 @@ private:
     LightShells<Real> shells_;  // the ellipsoids that hold a light
     BlockerHints hints_;        // where each shadow query starts
     struct AmbientOnly {
-        bool is = false;        // no_lighting() and Kr = 0
+        bool is = false;        // ambient_only()
         std::uint8_t bytes[3];  // and then its pixels' bytes
     };
     std::vector<AmbientOnly> ambient_only_;          // per ellipsoid

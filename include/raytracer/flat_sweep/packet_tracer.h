@@ -58,8 +58,7 @@ public:
         // Per ellipsoid, the ambient term and whether no light adds anything (see
         // hit_colours()).
         for (const Ellipsoid<Real>& e : ellipsoids_) {
-            Surface surface{ambient_term(ambient, e), no_lighting(e), false, {}};
-            surface.ambient_only = surface.no_lighting && !(e.kr > 0);
+            Surface surface{ambient_term(ambient, e), no_lighting(e), ambient_only(e), {}};
             pixel_bytes(surface.ambient, surface.bytes);
             surfaces_.push_back(surface);
         }
@@ -140,7 +139,7 @@ public:
         for (int k = 0; k < count; ++k) pixel_bytes(colours[k], out[k]);
     }
     // The bytes of every pixel that sees ellipsoid i where its colour is its ambient term
-    // alone (no light nor mirror adds to it: no_lighting() and Kr = 0), else nullptr.
+    // alone (ambient_only()), else nullptr.
     const std::uint8_t* ambient_only_bytes(std::uint32_t i) const {
         return surfaces_[i].ambient_only ? surfaces_[i].bytes : nullptr;
     }
@@ -225,7 +224,7 @@ private:
     struct Surface {
         V ambient;              // Ka * Ia * O
         bool no_lighting;       // no_lighting(): no light adds anything
-        bool ambient_only;      // no_lighting and Kr = 0: the colour is the ambient term
+        bool ambient_only;      // ambient_only(): the colour is the ambient term
         std::uint8_t bytes[3];  // to_byte() of the ambient term
     };
     std::vector<Surface> surfaces_;  // per ellipsoid

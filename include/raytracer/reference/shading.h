@@ -87,6 +87,13 @@ bool no_lighting(const Ellipsoid<Real>& e) {
     return specular_is_zero(e) && e.kd == 0;
 }
 
+// Whether e's colour is its ambient term alone wherever it is seen: no light nor mirror
+// adds to it, so the fast paths know its pixels' bytes before any ray.
+template <typename Real>
+bool ambient_only(const Ellipsoid<Real>& e) {
+    return no_lighting(e) && !(e.kr > 0);
+}
+
 // A ray's hit: the point, the unit normal facing the viewer, and normalize(-direction).
 template <typename T>
 struct SurfacePoint {
