@@ -17,20 +17,34 @@
 #include "raytracer/parser.h"
 #include "raytracer/scene_error.h"
 
+#ifdef _WIN32
+#include <fcntl.h>
+#include <io.h>
+#endif
+
 namespace rt {
 
 namespace {
 // A file of at least this many bytes is parsed as it is read, in pieces on the helper
 // threads too (file_pieces.h).
 constexpr std::size_t kReadInPiecesBytes = std::size_t{4} << 20;
+
+int keep_open(std::FILE* /*standard_input*/) { return 0; }  // read, not closed
 }  // namespace
 
 Scene load_scene(const std::string& path, unsigned threads_wanted) {
+    const bool standard_input = path == kStandardInput;
+    const std::string name = scene_name(path);
     // C stdio rather than an ifstream, and the file system asked for the file's size
     // alone unless it cannot be read: an ifstream's first use sets up locale facets, and
     // the status queries of cannot_read() cost system calls; together 0.1 ms of a 2 ms run
     // (docs/speed.md).
-    auto cannot_read = [&path](bool opened, int error) {
+    auto cannot_read = [&path, &name, standard_input](bool opened, int error) {
+        const std::string cause = error != 0 ? std::string(": ") + std::strerror(error) : std::string();
+        if (standard_input)  // closed when the program started: main() holds it open on a folder
+            return SceneError(name, 0,
+                              error == EISDIR ? "is closed (or a folder), expected a scene file"
+                                              : "could not be read" + cause + ", expected a scene file");
         std::error_code ec;
         // Where a folder opens (Linux), reading it fails.
         if (std::filesystem::is_directory(path, ec))
@@ -43,20 +57,23 @@ Scene load_scene(const std::string& path, unsigned threads_wanted) {
                 path, 0, "cannot be opened for reading: permission denied, expected a readable scene file");
         if (!opened && !std::filesystem::exists(path, ec))
             return SceneError(path, 0, "does not exist, expected a scene file");
-        const std::string cause = error != 0 ? std::string(": ") + std::strerror(error) : std::string();
         return opened
                    ? SceneError(path, 0, "could not be read" + cause + ", expected a readable scene file")
                    : SceneError(path, 0,
                                 "cannot be opened for reading" + cause + ", expected a readable scene file");
     };
-    const std::unique_ptr<std::FILE, int (*)(std::FILE*)> in(std::fopen(path.c_str(), "rb"), &std::fclose);
+#ifdef _WIN32
+    if (standard_input) (void)_setmode(_fileno(stdin), _O_BINARY);  // read as a file is: "\r\n" kept
+#endif
+    const std::unique_ptr<std::FILE, int (*)(std::FILE*)> in(
+        standard_input ? stdin : std::fopen(path.c_str(), "rb"), standard_input ? &keep_open : &std::fclose);
     if (!in) throw cannot_read(false, errno);
     const unsigned threads = std::min(threads_asked(threads_wanted), available_cores());
-    std::error_code ec;
-    const std::uintmax_t size = std::filesystem::file_size(path, ec);
-    auto too_large = [&path] {
+    std::error_code ec = std::make_error_code(std::errc::not_supported);  // standard input: a stream
+    const std::uintmax_t size = standard_input ? 0 : std::filesystem::file_size(path, ec);
+    auto too_large = [&name] {
         return SceneError(
-            path, 0,
+            name, 0,
             "is larger than " + std::to_string(kMaxSceneFileBytes >> 20) + " MiB, expected a scene file");
     };
     if (!ec && size > kMaxSceneFileBytes) throw too_large();  // refused before a byte is read
@@ -64,7 +81,7 @@ Scene load_scene(const std::string& path, unsigned threads_wanted) {
     // where it changed meanwhile (the stream read starts where the handle is: at the start).
     if (kReadsInPieces && !ec && size >= kReadInPiecesBytes && size <= kMaxSceneFileBytes) {
         if (std::optional<Scene> scene =
-                parse_scene_file(FileAt(in.get(), static_cast<std::size_t>(size)), path, threads))
+                parse_scene_file(FileAt(in.get(), static_cast<std::size_t>(size)), name, threads))
             return std::move(*scene);
     }
     // Reserved at the file's size where the system tells it (one allocation, not a
@@ -83,9 +100,9 @@ Scene load_scene(const std::string& path, unsigned threads_wanted) {
     if (std::ferror(in.get()) != 0) throw cannot_read(true, errno);
     const std::string_view text(bytes.data(), bytes.size());
     if (text.find_first_not_of(" \t\r\n\v\f") == std::string_view::npos)
-        throw SceneError(path, 0, kEmptyFile);
-    if (is_utf16(text)) throw SceneError(path, 0, kUtf16Text);
-    return parse_scene(text, path, threads);
+        throw SceneError(name, 0, kEmptyFile);
+    if (is_utf16(text)) throw SceneError(name, 0, kUtf16Text);
+    return parse_scene(text, name, threads);
 }
 
 }  // namespace rt

@@ -42,7 +42,7 @@ const char* usage_text() {
            "\n"
            "Renders a scene of ellipsoids and point lights (Phong shading, hard shadows,\n"
            "up to 3 mirror bounces) and writes it as a binary PPM (P6) to the file named\n"
-           "by the scene's OUTPUT line.\n"
+           "by the scene's OUTPUT line. A scene file of - is read from standard input.\n"
            "\n"
            "Options (anywhere; a value as --threads N or --threads=N, --output=PATH too;\n"
            "--threads and -o at most once; -- ends the options):\n"
@@ -83,8 +83,8 @@ int cannot_write(const std::string& scene_file, const rt::Scene& scene, const rt
     if (output.named_by_user)
         std::fprintf(stderr, "raytracer.exe: error: -o %s\n", what.c_str());
     else
-        std::fprintf(stderr, "%s:%d: error: OUTPUT %s\n", rt::escaped(scene_file).c_str(), scene.output_line,
-                     what.c_str());
+        std::fprintf(stderr, "%s:%d: error: OUTPUT %s\n", rt::escaped(rt::scene_name(scene_file)).c_str(),
+                     scene.output_line, what.c_str());
     return kCannotWrite;
 }
 
@@ -159,7 +159,7 @@ int main(int argc, char** argv) {
     }
     keep_standard_streams_apart();
     rt::install_interrupt_handlers();  // reading a large scene takes a while too
-    const std::string shown_file = rt::shown(line.scene_file, rt::kMaxShownPath);
+    const std::string shown_file = rt::shown(rt::scene_name(line.scene_file), rt::kMaxShownPath);
     // The scene's size, kept for a message about running out of memory while rendering it.
     struct Size {
         bool known = false;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "raytracer/output_file.h"
+#include "raytracer/parser.h"
 #include "raytracer/shown.h"
 
 #ifdef _WIN32
@@ -52,14 +53,25 @@ bool same_file(const std::string& a, const std::string& b) {
     return identity(a, x) && identity(b, y) && same_identity(x, y);
 }
 
-// Whether standard input (stream 0), output (1) or error (2) is this file.
+// Whether standard input (stream 0), output (1) or error (2) is a file on disk, and which.
+bool stream_identity(int stream, BY_HANDLE_FILE_INFORMATION& info) {
+    const HANDLE handle = GetStdHandle(stream == 0   ? STD_INPUT_HANDLE
+                                       : stream == 1 ? STD_OUTPUT_HANDLE
+                                                     : STD_ERROR_HANDLE);
+    return handle != INVALID_HANDLE_VALUE && handle != nullptr && GetFileType(handle) == FILE_TYPE_DISK &&
+           GetFileInformationByHandle(handle, &info) != 0;
+}
+
+// Whether the standard stream is this file.
 bool standard_stream_is(int stream, const std::string& file) {
     BY_HANDLE_FILE_INFORMATION x{}, y{};
-    const HANDLE out = GetStdHandle(stream == 0   ? STD_INPUT_HANDLE
-                                    : stream == 1 ? STD_OUTPUT_HANDLE
-                                                  : STD_ERROR_HANDLE);
-    return out != INVALID_HANDLE_VALUE && out != nullptr && GetFileType(out) == FILE_TYPE_DISK &&
-           GetFileInformationByHandle(out, &x) != 0 && identity(file, y) && same_identity(x, y);
+    return stream_identity(stream, x) && identity(file, y) && same_identity(x, y);
+}
+
+// Whether two standard streams are one file on disk.
+bool standard_streams_are_one_file(int a, int b) {
+    BY_HANDLE_FILE_INFORMATION x{}, y{};
+    return stream_identity(a, x) && stream_identity(b, y) && same_identity(x, y);
 }
 
 // A closed standard output has no handle at all here: writing it fails and says so.
@@ -170,6 +182,13 @@ bool standard_stream_is(int stream, const std::string& file) {
     struct stat x {
     }, y{};
     return ::fstat(stream, &x) == 0 && ::stat(file.c_str(), &y) == 0 && same_identity(x, y);
+}
+
+// Whether two standard streams are one regular file (not one terminal, say).
+bool standard_streams_are_one_file(int a, int b) {
+    struct stat x {
+    }, y{};
+    return ::fstat(a, &x) == 0 && ::fstat(b, &y) == 0 && S_ISREG(x.st_mode) && same_identity(x, y);
 }
 
 // Whether standard output is a folder, where no image can go: closed when the program
@@ -296,6 +315,8 @@ std::string outside_working_folder(const std::string& output) {
 
 OutputChoice choose_output(const std::string& scene_output, const std::string* user_output,
                            const std::string& scene_file) {
+    // A scene read from standard input ("-") is the file standard input is, if any.
+    const bool from_standard_input = scene_file == kStandardInput;
     OutputChoice choice;
     choice.named_by_user = user_output != nullptr;
     choice.path = choice.named_by_user ? *user_output : scene_output;
@@ -304,7 +325,8 @@ OutputChoice choose_output(const std::string& scene_output, const std::string* u
         if (standard_output_is_folder())  // raytracer.exe -o - scene.txt >&-
             choice.refusal = "- (standard output) is closed (or a folder), expected a pipe or a file";
         // raytracer.exe -o - scene.txt >> scene.txt
-        else if (standard_stream_is(1, scene_file))
+        else if (from_standard_input ? standard_streams_are_one_file(1, 0)
+                                     : standard_stream_is(1, scene_file))
             choice.refusal =
                 "- (standard output) is the scene file itself, expected another file for the image";
         return choice;
@@ -331,7 +353,7 @@ OutputChoice choose_output(const std::string& scene_output, const std::string* u
     }
     if (existing == Existing::Nothing || existing == Existing::Folder)
         return choice;  // a folder: PendingFile says so
-    if (same_file(choice.path, scene_file)) {
+    if (from_standard_input ? standard_stream_is(0, choice.path) : same_file(choice.path, scene_file)) {
         choice.refusal = shown(choice.path, kMaxShownPath) +
                          " is the scene file itself, expected another file for the image";
         return choice;

@@ -28,10 +28,11 @@ namespace {
 
 using Run = run_program::Result;
 
-// Runs raytracer.exe with these arguments in the folder, as a grading script does.
-// Its output is read as text: a Windows program's "\r\n" counts as "\n".
-Run run(const Scratch& folder, const std::vector<std::string>& arguments) {
-    Run r = run_program::run(RAYTRACER_EXE, arguments, folder.work, folder.root);
+// Runs raytracer.exe with these arguments in the folder, as a grading script does (its
+// standard input from the file `input` where one is named). Its output is read as text:
+// a Windows program's "\r\n" counts as "\n".
+Run run(const Scratch& folder, const std::vector<std::string>& arguments, const fs::path& input = {}) {
+    Run r = run_program::run(RAYTRACER_EXE, arguments, folder.work, folder.root, input);
     for (std::string* text : {&r.out, &r.err})
         text->erase(std::remove(text->begin(), text->end(), '\r'), text->end());
     return r;
@@ -160,6 +161,35 @@ TEST(dash_o_overrides_output_and_dash_is_standard_output) {
     CHECK_EQ(piped.err, std::string());
     CHECK(piped.out == read_bytes(folder.work / "other.ppm"));
     CHECK_EQ(folder.names(), std::string("other.ppm scene.txt third.ppm"));
+}
+
+// The scene file "-" is standard input: the same image, and messages that call it <stdin>.
+// The file standard input is may not be the image, as the scene file may not.
+TEST(dash_reads_the_scene_from_standard_input) {
+    const Scratch folder;
+    write_bytes(folder.root / "scene.txt", empty_scene("picture.ppm"));
+    Run r = run(folder, {"-"}, folder.root / "scene.txt");
+    CHECK_EQ(r.status, 0);
+    CHECK_EQ(r.err, std::string());
+    check_is_background_image(folder.work / "picture.ppm");
+    write_bytes(folder.root / "bad.txt", "NEAR 1\nRES 4 3\nFOO 1\n");
+    r = run(folder, {"-"}, folder.root / "bad.txt");
+    CHECK_EQ(r.status, 1);
+    CHECK(contains(r.err, "<stdin>:3: error: unknown keyword 'FOO'"));
+    write_bytes(folder.root / "empty.txt", "");
+    r = run(folder, {"--threads", "1", "-"}, folder.root / "empty.txt");
+    CHECK_EQ(r.status, 1);
+    CHECK_EQ(r.err, std::string("<stdin>: error: is empty, expected a scene file\n"));
+    write_bytes(folder.work / "self.txt", empty_scene("self.txt"));
+    r = run(folder, {"-"}, folder.work / "self.txt");
+    CHECK_EQ(r.status, 3);
+    CHECK(contains(r.err, "<stdin>:9: error: OUTPUT 'self.txt' is the scene file itself"));
+    CHECK_EQ(read_bytes(folder.work / "self.txt"), empty_scene("self.txt"));
+    write_bytes(folder.work / "-", empty_scene("named.ppm"));  // a file named "-": ./-
+    r = run(folder, {"./-"});
+    CHECK_EQ(r.status, 0);
+    check_is_background_image(folder.work / "named.ppm");
+    CHECK_EQ(folder.names(), std::string("- named.ppm picture.ppm self.txt"));
 }
 
 // A scene may name only a file in or below the working folder; -o may name any.

@@ -524,7 +524,7 @@ TEST(help_that_cannot_be_written_is_an_error) {
 }
 
 // raytracer.exe -o - scene.txt >> scene.txt: standard output is the scene file itself,
-// refused before anything is written to it.
+// refused before anything is written to it; so too where the scene is standard input.
 TEST(standard_output_into_the_scene_file_is_refused) {
     const Scratch folder;
     const std::string scene = small_scene("out.ppm");
@@ -533,11 +533,23 @@ TEST(standard_output_into_the_scene_file_is_refused) {
     options.stdout_fd = open((folder.work / "scene.txt").c_str(), O_WRONLY | O_APPEND);
     CHECK(options.stdout_fd >= 0);
     CHECK_EQ(run(folder, {"-o", "-", "scene.txt"}, options), 3);
-    close(options.stdout_fd);
-    CHECK_EQ(captured_stderr(folder),
-             std::string("raytracer.exe: error: -o - (standard output) is the scene file itself, expected "
-                         "another file for the image\n"));
+    const std::string refused =
+        "raytracer.exe: error: -o - (standard output) is the scene file itself, expected another file for "
+        "the "
+        "image\n";
+    CHECK_EQ(captured_stderr(folder), refused);
+    // raytracer.exe - -o - < scene.txt >> scene.txt: the scene read from standard input.
+    options.stdin_fd = open((folder.work / "scene.txt").c_str(), O_RDONLY);
+    CHECK(options.stdin_fd >= 0);
+    CHECK_EQ(run(folder, {"-", "-o", "-"}, options), 3);
+    CHECK_EQ(captured_stderr(folder), refused);
+    close(options.stdin_fd), close(options.stdout_fd);
     CHECK_EQ(read_bytes(folder.work / "scene.txt"), scene);
+    Options closed;  // raytracer.exe - <&-
+    closed.closed_streams = 1;
+    CHECK_EQ(run(folder, {"-"}, closed), 1);
+    CHECK_EQ(captured_stderr(folder),
+             std::string("<stdin>: error: is closed (or a folder), expected a scene file\n"));
 }
 
 // A folder on the way that is a symbolic link out of the working folder is outside it.

@@ -29,13 +29,15 @@ inline std::string read_file(const fs::path& path) {
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-// Runs program with args (none may contain a double quote) in folder; the captured
-// output goes through two files in capture_folder, which must not be folder itself.
+// Runs program with args (none may contain a double quote) in folder, its standard input
+// from the file `input` where one is named; the captured output goes through two files in
+// capture_folder, which must not be folder itself.
 inline Result run(const fs::path& program, const std::vector<std::string>& args, const fs::path& folder,
-                  const fs::path& capture_folder) {
+                  const fs::path& capture_folder, const fs::path& input = {}) {
     const fs::path out = capture_folder / "stdout.txt", err = capture_folder / "stderr.txt";
     std::string command = "\"" + program.string() + "\"";
     for (const std::string& arg : args) command += " \"" + arg + "\"";
+    if (!input.empty()) command += " <\"" + input.string() + "\"";
     command += " >\"" + out.string() + "\" 2>\"" + err.string() + "\"";
 #ifdef _WIN32
     command = "\"" + command + "\"";  // cmd.exe strips one outer pair of quotes

@@ -18,7 +18,8 @@ struct OutputChoice {
     std::string refusal;
 };
 
-// scene_output: the scene's OUTPUT; user_output: -o's path, or nullptr when not given.
+// scene_output: the scene's OUTPUT; user_output: -o's path, or nullptr when not given;
+// scene_file: the scene file as named ("-": standard input), which is never replaced.
 OutputChoice choose_output(const std::string& scene_output, const std::string* user_output,
                            const std::string& scene_file);
 

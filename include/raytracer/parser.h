@@ -47,6 +47,11 @@ inline bool is_utf16(std::string_view text) {
     return text.rfind("\xFF\xFE", 0) == 0 || text.rfind("\xFE\xFF", 0) == 0;
 }
 
+// The scene file "-" is standard input, as -o - is standard output; messages call it
+// <stdin>. (A file named "-" is read as ./-.)
+inline constexpr std::string_view kStandardInput = "-";
+inline std::string scene_name(const std::string& path) { return path == kStandardInput ? "<stdin>" : path; }
+
 // Reads and parses a scene file, on `threads` threads at most (0: as many as there are cores, as a
 // render's --threads). Refuses what is not a scene file at
 // all (missing, unreadable, a directory, empty, binary) with a SceneError that has no line.
