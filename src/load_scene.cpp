@@ -37,8 +37,7 @@ Scene load_scene(const std::string& path, unsigned threads_wanted) {
     const std::string name = scene_name(path);
     // C stdio rather than an ifstream, and the file system asked for the file's size
     // alone unless it cannot be read: an ifstream's first use sets up locale facets, and
-    // the status queries of cannot_read() cost system calls; together 0.1 ms of a 2 ms run
-    // (docs/speed.md).
+    // the status queries of cannot_read() cost system calls; together 0.1 ms of a 2 ms run.
     auto cannot_read = [&path, &name, standard_input](bool opened, int error) {
         const std::string cause = error != 0 ? std::string(": ") + std::strerror(error) : std::string();
         if (standard_input)  // closed when the program started: main() holds it open on a folder

@@ -5,7 +5,7 @@
 // by row block while later rows render, so the rows already written are never read
 // again. Each 4 KiB of fresh memory costs a page fault, about 2 us in this virtual
 // machine: a 400x400 image is 118 pages, the ring of two 64 KiB write blocks 32
-// (whole-process medians -0.14 to -0.19 ms on the course scenes: docs/speed.md).
+// (whole-process medians -0.14 to -0.19 ms on the course scenes).
 #pragma once
 
 #include <atomic>

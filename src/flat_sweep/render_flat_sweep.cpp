@@ -139,8 +139,8 @@ public:
           near_z_(-static_cast<Real>(scene.near_plane)) {
         // Each row starts as a copy of a background row, written by the thread that
         // renders the row, and only traced pixels are written over: most pixels of the
-        // course scenes see no ellipsoid, and a copy costs far less than a per-pixel test
-        // (measured in docs/speed.md).
+        // course scenes see no ellipsoid (against rows zero-filled, then written pixel by
+        // pixel: 0.47 M instructions less a course scene).
         std::uint8_t background[3];
         pixel_bytes(tracer_.background(), background);
         for (std::size_t i = 0; i < background_row_.size(); ++i) background_row_[i] = background[i % 3];

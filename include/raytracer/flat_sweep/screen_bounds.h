@@ -4,7 +4,7 @@
 // whole render must cost about as much as starting a process; a per-pixel test of
 // every ellipsoid (or a direction-grid lookup) was most of the time. With these
 // rectangles a row's candidate ellipsoids are known before its pixels, and a pixel
-// none covers is the background without tracing. Measured gain in docs/speed.md.
+// none covers is the background without tracing.
 //
 // The rectangle bounds the projection of the ellipsoid's inflated bounding sphere
 // (sphere_bounds.h) on the near plane: the planes through the eye tangent to the
