@@ -76,7 +76,10 @@ TEST(help_prints_usage_on_stdout_and_exits_0) {
         CHECK(contains(r.out, "no absolute path, no '..'"));
         CHECK(contains(r.out, "SPHERE name x y z sx sy sz r g b Ka Kd Ks Kr n"));
         CHECK(contains(r.out, "Exit status: 0 written; 1 bad scene file; 2 bad command line;"));
+        CHECK(contains(r.out, "A scene file of - is read from standard input."));
         CHECK_EQ(r.err, std::string());
+        std::istringstream lines(r.out);  // it fits a terminal of 80 columns
+        for (std::string line; std::getline(lines, line);) CHECK(line.size() <= 80);
     }
     CHECK(folder.names().empty());
 }
