@@ -49,31 +49,36 @@ std::string parse_command_line(int argc, char** argv, Options& options) {
 }
 
 std::string help_text(const std::string& default_scenes) {
-    return "usage: raytracer-grade [--raytracer EXE] [--keys DIR] [--only NAME] [--timeout SECONDS]\n"
-           "                       [--diff-dir DIR] [--html FILE] [SCENES_DIR]\n"
+    return "usage: raytracer-grade [--raytracer EXE] [--keys DIR] [--only NAME]\n"
+           "                       [--timeout SECONDS] [--diff-dir DIR] [--html FILE]\n"
+           "                       [SCENES_DIR]\n"
            "\n"
-           "Renders every *.txt scene of SCENES_DIR (default: " +
+           "Renders every *.txt scene of SCENES_DIR with raytracer.exe, one process per\n"
+           "scene in an empty scratch folder, as the course's grading script does, and\n"
+           "compares each image with its key (testX.txt -> keyX.ppm).\n"
+           "\n"
+           "  SCENES_DIR         default: " +
            default_scenes +
-           ") with\n"
-           "raytracer.exe, one process per scene in an empty scratch folder, as the course's\n"
-           "grading script does, and compares each image with its key (testX.txt -> keyX.ppm).\n"
            "\n"
-           "  --raytracer EXE    the program to grade (default: raytracer.exe beside this program)\n"
+           "  --raytracer EXE    the program to grade (default: raytracer.exe beside this\n"
+           "                     program)\n"
            "  --keys DIR         the key images (default: keys/ beside SCENES_DIR)\n"
            "  --only NAME        grade only the scene NAME.txt (e.g. testShadow)\n"
            "  --timeout SECONDS  kill a render that takes longer (default 60)\n"
-           "  --diff-dir DIR     write DIR/<scene>.png for each failing scene: key | yours | difference\n"
+           "  --diff-dir DIR     write DIR/<scene>.png for each failing scene: key, yours\n"
+           "                     and their difference side by side\n"
            "  --html FILE        write one page with the marks and the difference pictures\n"
            "\n"
-           "The pass rule (SPEC section 7), per scene: the image must be a binary PPM (P6) of the\n"
-           "key's size, and each pixel that differs from the key must be explainable: either\n"
-           "every channel is off by at most one level (a truncation step of the arithmetic), or\n"
-           "the pixel is one of the key's known ambiguous pixels (an eye ray exactly tangent to\n"
-           "an ellipsoid, or through the rim where the near plane cuts one). Any other differing\n"
-           "pixel fails the scene: the course gives no partial marks. A passing scene earns 2 marks.\n"
+           "The pass rule (SPEC section 7), per scene: the image must be a binary PPM (P6)\n"
+           "of the key's size, and each pixel that differs from the key must be\n"
+           "explainable: either every channel is off by at most one level (a truncation\n"
+           "step of the arithmetic), or the pixel is one of the key's known\n"
+           "ambiguous pixels (an eye ray exactly tangent to an ellipsoid, or through the\n"
+           "rim where the near plane cuts one). Any other differing pixel fails the scene:\n"
+           "the course gives no partial marks. A passing scene earns 2 marks.\n"
            "\n"
-           "Exit status: 0 when every scene passes, 1 when one fails, 2 on a bad command line,\n"
-           "77 when the scene folder does not exist.\n";
+           "Exit status: 0 when every scene passes, 1 when one fails, 2 on a bad command\n"
+           "line, 77 when the scene folder does not exist.\n";
 }
 
 }  // namespace grade
