@@ -88,7 +88,9 @@ Scene load_scene(const std::string& path, unsigned threads_wanted) {
     LargeVector<char> bytes;
     if (!ec && size <= kMaxSceneFileBytes) bytes.reserve(static_cast<std::size_t>(size));
     char buffer[1 << 14];
-    for (std::size_t got; (got = std::fread(buffer, 1, sizeof buffer, in.get())) > 0;) {
+    // Not read again past its end: a terminal's end (Ctrl-D) would then be asked for twice.
+    for (std::size_t got;
+         !std::feof(in.get()) && (got = std::fread(buffer, 1, sizeof buffer, in.get())) > 0;) {
         // A stream of unknown size (a pipe, /dev/zero) grows the buffer by doubling, but
         // never past the limit: at most 96 MiB while the last 32 are copied, not 192.
         if (bytes.size() + got > kMaxSceneFileBytes) throw too_large();

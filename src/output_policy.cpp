@@ -315,7 +315,7 @@ std::string outside_working_folder(const std::string& output) {
 
 OutputChoice choose_output(const std::string& scene_output, const std::string* user_output,
                            const std::string& scene_file) {
-    // A scene read from standard input ("-") is the file standard input is, if any.
+    // A scene read from standard input ("-") is the regular file standard input is, if any.
     const bool from_standard_input = scene_file == kStandardInput;
     OutputChoice choice;
     choice.named_by_user = user_output != nullptr;
@@ -353,7 +353,8 @@ OutputChoice choose_output(const std::string& scene_output, const std::string* u
     }
     if (existing == Existing::Nothing || existing == Existing::Folder)
         return choice;  // a folder: PendingFile says so
-    if (from_standard_input ? standard_stream_is(0, choice.path) : same_file(choice.path, scene_file)) {
+    if (from_standard_input ? existing == Existing::RegularFile && standard_stream_is(0, choice.path)
+                            : same_file(choice.path, scene_file)) {
         choice.refusal = shown(choice.path, kMaxShownPath) +
                          " is the scene file itself, expected another file for the image";
         return choice;

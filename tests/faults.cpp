@@ -640,6 +640,36 @@ TEST(standard_output_on_a_terminal_is_refused) {
           std::string::npos);
 }
 
+// raytracer.exe - on a terminal: the scene typed there ends at one Ctrl-D, as for cat,
+// and -o naming that terminal writes the image there (it is not "the scene file").
+TEST(a_scene_typed_on_a_terminal_ends_at_one_end_of_file) {
+    const Scratch folder;
+    const PseudoTerminal pty;
+    CHECK_EQ(fcntl(pty.master, F_SETFL, O_NONBLOCK), 0);
+    Options typed;
+    typed.stdin_fd = pty.terminal;
+    const pid_t pid = start(folder, {"-", "-o", ptsname(pty.master)}, typed);
+    const std::string scene = small_scene("out.ppm") + "\x04";  // VEOF, Ctrl-D: end of input
+    CHECK_EQ(write(pty.master, scene.data(), scene.size()), static_cast<ssize_t>(scene.size()));
+    int status = 0;
+    char buffer[4096];
+    std::size_t shown = 0;  // the echo, then the image
+    for (int ms = 0; ms < 20000 && waitpid(pid, &status, WNOHANG) == 0; ++ms) {
+        for (ssize_t got; (got = read(pty.master, buffer, sizeof buffer)) > 0;)
+            shown += static_cast<std::size_t>(got);
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    if (waitpid(pid, &status, WNOHANG) == 0) {  // still reading: ended here, and failed
+        kill(pid, SIGKILL);
+        waitpid(pid, &status, 0);
+    }
+    for (ssize_t got; (got = read(pty.master, buffer, sizeof buffer)) > 0;)
+        shown += static_cast<std::size_t>(got);
+    CHECK(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+    CHECK_EQ(captured_stderr(folder), std::string());
+    CHECK(shown > std::size_t{30000});  // the 100x100 image went to the terminal
+}
+
 // On a terminal, a render past a second shows one line kept up to date, erased at the
 // end: no newline at all, and never wider than the terminal (a wider one would wrap and
 // leave its start behind).
