@@ -44,7 +44,12 @@ inline Result run(const fs::path& program, const std::vector<std::string>& args,
 #endif
     const fs::path previous = fs::current_path();
     fs::current_path(folder);
-    const int raw = std::system(command.c_str());
+    int raw = std::system(command.c_str());
+#ifdef _WIN32
+    // cmd.exe's 9009, "not recognized as a command", for a program that exists: under Wine a
+    // start fails so now and then. Tried once more; a program that cannot start fails again.
+    if (raw == 9009 && fs::exists(program)) raw = std::system(command.c_str());
+#endif
     fs::current_path(previous);
 
     Result result;
