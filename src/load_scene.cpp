@@ -68,17 +68,18 @@ Scene load_scene(const std::string& path, unsigned threads_wanted) {
         standard_input ? stdin : std::fopen(path.c_str(), "rb"), standard_input ? &keep_open : &std::fclose);
     if (!in) throw cannot_read(false, errno);
     const unsigned threads = std::min(threads_asked(threads_wanted), available_cores());
-    std::error_code ec = std::make_error_code(std::errc::not_supported);  // standard input: a stream
+    std::error_code ec;
     const std::uintmax_t size = standard_input ? 0 : std::filesystem::file_size(path, ec);
+    const bool size_known = !standard_input && !ec;  // standard input is read as a stream
     auto too_large = [&name] {
         return SceneError(
             name, 0,
             "is larger than " + std::to_string(kMaxSceneFileBytes >> 20) + " MiB, expected a scene file");
     };
-    if (!ec && size > kMaxSceneFileBytes) throw too_large();  // refused before a byte is read
+    if (size_known && size > kMaxSceneFileBytes) throw too_large();  // refused before a byte is read
     // A large file of known size: parsed as read, in pieces; read again as a stream
     // where it changed meanwhile (the stream read starts where the handle is: at the start).
-    if (kReadsInPieces && !ec && size >= kReadInPiecesBytes && size <= kMaxSceneFileBytes) {
+    if (kReadsInPieces && size_known && size >= kReadInPiecesBytes && size <= kMaxSceneFileBytes) {
         if (std::optional<Scene> scene =
                 parse_scene_file(FileAt(in.get(), static_cast<std::size_t>(size)), name, threads))
             return std::move(*scene);
@@ -86,7 +87,7 @@ Scene load_scene(const std::string& path, unsigned threads_wanted) {
     // Reserved at the file's size where the system tells it (one allocation, not a
     // doubling vector's: a 26 MB scene then peaks at 26 MB, not 48).
     LargeVector<char> bytes;
-    if (!ec && size <= kMaxSceneFileBytes) bytes.reserve(static_cast<std::size_t>(size));
+    if (size_known && size <= kMaxSceneFileBytes) bytes.reserve(static_cast<std::size_t>(size));
     char buffer[1 << 14];
     // Not read again past its end: a terminal's end (Ctrl-D) would then be asked for twice.
     for (std::size_t got;

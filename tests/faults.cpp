@@ -534,9 +534,8 @@ TEST(standard_output_into_the_scene_file_is_refused) {
     CHECK(options.stdout_fd >= 0);
     CHECK_EQ(run(folder, {"-o", "-", "scene.txt"}, options), 3);
     const std::string refused =
-        "raytracer.exe: error: -o - (standard output) is the scene file itself, expected another file for "
-        "the "
-        "image\n";
+        "raytracer.exe: error: -o - (standard output) is the scene file itself, expected another file "
+        "for the image\n";
     CHECK_EQ(captured_stderr(folder), refused);
     // raytracer.exe - -o - < scene.txt >> scene.txt: the scene read from standard input.
     options.stdin_fd = open((folder.work / "scene.txt").c_str(), O_RDONLY);
