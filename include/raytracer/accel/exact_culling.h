@@ -17,7 +17,7 @@ namespace rt {
 // What a bounding volume may cull (docs/speed.md, "Why every path gives the reference's
 // bytes"), the argument stated once. A root the solver reports lies within its rounding
 // of the unit sphere: a few ulps of |o'| away from tangency, and at most about
-// 90 eps (1 + |o'|) for a ray that only touches it (the clamped discriminant: bvh.h).
+// 110 eps (1 + |o'|) for a ray that only touches it (the clamped discriminant: bvh.h).
 // A bounding volume that holds its ellipsoid with a gap of kCullingGap in the unit
 // sphere's space (the flat sweep's spheres, the tree's boxes) therefore rules out only
 // tests that would find no usable root, for rays from within a reach where that
@@ -29,16 +29,16 @@ inline constexpr double kCullingGap = 1e-3;
 // it (a window 1e100 times smaller than the ellipsoid) they may underflow to 0, and no
 // row is ruled out.
 inline constexpr double kLeastSquaredDirection = 1e-100;
-// The flat sweep's reach, in smallest scales: the bound above is 2e-8 at 1e6 in double.
-// In float it is 1.1e-3 at 1e2, about the gap itself; the bound is loose (the
+// The flat sweep's reach, in smallest scales: the bound above is 2.4e-8 at 1e6 in
+// double. In float it is 1.3e-3 at 1e2, about the gap itself; the bound is loose (the
 // adversarial rays of speed.accel at 49-51 smallest scales find no difference) and
 // float renders only for the tests and the precision report.
 template <typename Real>
 constexpr double culling_reach() {
     return std::numeric_limits<Real>::digits > 30 ? 1e6 : 1e2;
 }
-// The tree's: a gap of gap_per_reach() |o'| holds the bound 50 times over in double
-// (1e-12 against 2e-14), so a box grown by kCullingGap culls rays from within 1e9
+// The tree's: a gap of gap_per_reach() |o'| holds the bound 40 times over in double
+// (1e-12 against 2.4e-14), so a box grown by kCullingGap culls rays from within 1e9
 // smallest scales, and one grown more from farther (BoxGaps, slab_rays.h); float keeps
 // the flat sweep's reach.
 template <typename Real>

@@ -7,7 +7,7 @@
 // ellipsoid is centred on it with radius max|s| (1 + kCullingGap); it contains the
 // ellipsoid with a gap of at least kCullingGap in the unit sphere's space, far more than
 // the rounding of intersect() (a few ulps, plus its tangent bound, unit_sphere_roots.h:
-// at most ~64 epsilon times the distance in radii, 1e-8 within the reach below). So
+// at most about 110 eps (1 + |o'|), 2.4e-8 within the reach below: exact_culling.h). So
 // every culled test is one that intersect() would have answered "no usable root", and
 // images stay bit-identical. Where the ray's origin is so far from an ellipsoid,
 // relative to its smallest scale, that rounding could approach that gap, nothing is

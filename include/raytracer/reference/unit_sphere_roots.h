@@ -27,10 +27,13 @@
 // sections 2.2 and 3.1): the data o' and e carry relative errors of at most 2 eps per
 // component (o' = (o - C)/s: the roundings of the scene's own numbers and of the
 // arithmetic; e: d/s and the scaling), so each product o'_j e_k is off by at most
-// 2 eps of itself, and the difference by eps/2 of m_i more: |dw_i| <= 3 eps m_i. Then
-// |d(w.w)| <= 2 sum |w_i| |dw_i| + 2 eps w.w <= 6 eps sum |w_i| m_i + 2 eps w.w, and
-// a = e.e is off by at most 2 eps a. A value of a - w.w computed within
-//   bound = eps (8 sum |w_i| m_i + 4 w.w + 4 a)
+// 4.5 eps of itself (2 + 2 from its factors, eps/2 its own rounding), and the
+// difference by eps/2 of |w_i| <= m_i more: |dw_i| <= 5 eps m_i. Then |d(w.w)| <=
+// 2 sum |w_i| |dw_i| + 1.5 eps w.w <= 10 eps sum |w_i| m_i + 1.5 eps w.w (the squares'
+// and sums' roundings), a = e.e is off by at most 5.5 eps a (4 eps from e, 1.5 its
+// own), and the difference a - w.w by eps/2 (a + w.w) more. A value of a - w.w
+// computed within
+//   bound = eps (10 sum |w_i| m_i + 2 w.w + 6 a)
 // below zero cannot be told from zero and counts as tangent (an exactly tangent ray is a
 // hit, SPEC section 4); eps is the scene's precision (scene_precision.h), so double and
 // long double decide alike. A ray that passes farther than twice the radius (w.w > 4a)
@@ -55,9 +58,10 @@
 // can be far more than a few ulps from 1 when the ray meets the surface at a slant (a
 // small discriminant amplifies its error), so comparing it with 1 would decide by
 // rounding, and differently in double and long double. Whether the point itself lies on
-// the surface is well conditioned: p = o' + d' with |dp_i| <= 2 eps g_i,
-// g_i = |o'_i| + |d'_i| (the roundings of o', d' and the sum), so |p|^2 - 1 is off by at
-// most 4 eps sum |p_i| g_i + 2 eps; within twice that of zero, p is on the surface, the ray meets it
+// the surface is well conditioned: p = o' + d' with |dp_i| <= 2.5 eps g_i,
+// g_i = |o'_i| + |d'_i| (2 eps from o' and d', eps/2 the sum's rounding), so |p|^2 - 1
+// is off by at most 5 eps sum |p_i| g_i + 2 eps (1.5 eps |p|^2 for the squares' and
+// sums' roundings, at |p| ~ 1); within twice that of zero, p is on the surface, the ray meets it
 // (a hit) and the root nearer t = 1 is 1 exactly: thresholds at t = 1 (the near plane,
 // the light) then decide as in exact arithmetic, alike in every precision. Where that
 // allowance is not small (|p| near overflow) nothing is set.
@@ -129,15 +133,15 @@ RT_ALWAYS_INLINE UnitLine<Real> unit_line(Real ox, Real oy, Real oz, Real dx, Re
     const Real mx = abs(pyz) + abs(pzy), my = abs(pzx) + abs(pxz), mz = abs(pxy) + abs(pyx);
     const Real w2 = wx * wx + wy * wy + wz * wz;
     const Real disc = a - w2;
-    const Real bound =
-        scene_epsilon<Real>() * (Real(8) * (abs(wx) * mx + abs(wy) * my + abs(wz) * mz) + Real(4) * (w2 + a));
+    const Real bound = scene_epsilon<Real>() *
+                       (Real(10) * (abs(wx) * mx + abs(wy) * my + abs(wz) * mz) + Real(2) * w2 + Real(6) * a);
     const Real miss = disc < -bound ? Real(1) : (w2 > Real(4) * a ? Real(1) : Real(0));
     // The point at t = 1.
     const Real px = ox + dx, py = oy + dy, pz = oz + dz;
     const Real gx = abs(ox) + ax, gy = abs(oy) + ay, gz = abs(oz) + az;
     const Real surface = (px * px + py * py + pz * pz) - Real(1);
     const Real allowance =
-        scene_epsilon<Real>() * (Real(8) * (abs(px) * gx + abs(py) * gy + abs(pz) * gz) + Real(4));
+        scene_epsilon<Real>() * (Real(10) * (abs(px) * gx + abs(py) * gy + abs(pz) * gz) + Real(4));
     const Real on = abs(surface) <= allowance ? (allowance < Real(0.5) ? Real(1) : Real(0)) : Real(0);
     return {on != 0 ? Real(1) : Real(1) - miss, on, a, b, disc < 0 ? Real(0) : disc, inverse_largest};
 }
