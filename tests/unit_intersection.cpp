@@ -1,4 +1,6 @@
 // Ray/ellipsoid intersection: both roots, the near-plane cut, tangency, misses.
+#include <limits>
+
 #include "check.h"
 #include "raytracer/reference/brute_force.h"
 #include "raytracer/reference/ellipsoid.h"
@@ -117,6 +119,33 @@ TEST(a_hit_exactly_on_the_near_plane_is_not_visible) {
     // One pixel further in, the inner surface is visible.
     const double x2 = -1.0 + 2.0 * 241 / 600;
     CHECK(tracer.closest(V{}, V{x2, y, -1}, 1.0).found());
+}
+
+// kRootUlps (spec_rules.h): a root within 8 ulps of a ray's bound is at it, where the
+// point at t = 1 does not settle it (a computed root handed over as it is); ulps of
+// double in long double too. 6 ulps off, a root is at the bound; 12 ulps off, past it.
+template <typename Real>
+void roots_near_a_bound_are_at_it() {
+    const Real ulp = Real(std::numeric_limits<double>::epsilon());
+    const Real beyond = rt::visible_beyond(Real(rt::kEyeRayMinT));
+    Real t;
+    bool inside;
+    // From inside the near plane's cut (near root behind it), the far root at 1 + 6 ulps
+    // is on the near plane: not visible; at 1 + 12 ulps it is.
+    CHECK(!rt::visible_root(rt::Roots<Real>{true, Real(0.5), 1 + 6 * ulp}, beyond, t, inside));
+    CHECK(rt::visible_root(rt::Roots<Real>{true, Real(0.5), 1 + 12 * ulp}, beyond, t, inside));
+    CHECK(inside);
+    // A shadow ray's roots at 0.001 and at the light, 6 ulps off: not between them.
+    const Real start = Real(rt::kShadowRayMinT);
+    CHECK(!rt::blocks_segment(rt::Roots<Real>{true, start * (1 + 6 * ulp), 2}));
+    CHECK(rt::blocks_segment(rt::Roots<Real>{true, start * (1 + 12 * ulp), 2}));
+    CHECK(!rt::blocks_segment(rt::Roots<Real>{true, -1, 1 - 6 * ulp}));
+    CHECK(rt::blocks_segment(rt::Roots<Real>{true, -1, 1 - 12 * ulp}));
+}
+
+TEST(a_root_within_a_few_ulps_of_a_bound_is_at_it) {
+    roots_near_a_bound_are_at_it<double>();
+    roots_near_a_bound_are_at_it<long double>();
 }
 
 TEST(the_nearest_of_several_is_taken) {

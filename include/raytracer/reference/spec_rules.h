@@ -32,8 +32,8 @@ template <typename Real>
 Real pixel_y(Real top, Real bottom, int r, int rows) {
     return top - (top - bottom) * Real(r) / Real(rows);
 }
-// pixel_x() of every column of the scene's image, a table each renderer makes once
-// rather than computing it per row.
+// pixel_x() of every column of the scene's image, a table the fast paths make once
+// rather than computing it per row (the reference calls pixel_x() per pixel).
 template <typename Real>
 std::vector<Real> column_xs(const Scene& scene) {
     std::vector<Real> x(static_cast<std::size_t>(scene.columns));
@@ -44,12 +44,13 @@ std::vector<Real> column_xs(const Scene& scene) {
 
 // A ray parameter a root must lie beyond to be visible, for a ray that starts at
 // min_t. A root computed within a few ulps of min_t cannot be told from one at min_t,
-// and one at min_t is not visible (the hit must lie beyond it). This decides the eye
-// rays through the rim where the near plane cuts an ellipsoid: keyIllum's pixels
-// (240,345), (360,345), (345,240), (345,360) have their far root at exactly t = 1 (a
-// 3-4-5 triangle), which double rounding puts 2 ulps above 1. The ulps are those of
-// the scene's double numbers, whatever Real is (scene_precision.h), so that long double
-// decides these pixels as double does.
+// and one at min_t is not visible (the hit must lie beyond it). The roots a decimal
+// scene puts at exactly t = 1 (keyIllum's rim pixels (240,345), (360,345), (345,240),
+// (345,360): a 3-4-5 triangle, which double rounding puts 2 ulps above 1; a light on a
+// surface) the solver itself sets to 1 (unit_sphere_roots.h, the point at t = 1); this
+// margin is for the roots no such test settles, at 0.001, 0.0001 and 1. The ulps are
+// those of the scene's double numbers, whatever Real is (scene_precision.h), so that
+// long double decides as double does.
 inline constexpr int kRootUlps = 8;  // a root this many scene ulps from a bound is at it
 template <typename Real>
 Real visible_beyond(Real min_t) {
