@@ -47,7 +47,7 @@ Scene load_scene(const std::string& path, unsigned threads_wanted) {
         std::error_code ec;
         // Where a folder opens (Linux), reading it fails.
         if (std::filesystem::is_directory(path, ec))
-            return SceneError(path, 0, "is a directory, expected a scene file");
+            return SceneError(path, 0, "is a folder, expected a scene file");
         if (!opened && error == ENOENT) return SceneError(path, 0, "does not exist, expected a scene file");
         if (!opened && error == ENAMETOOLONG)
             return SceneError(path, 0, "is too long a name or path for the system, expected a scene file");

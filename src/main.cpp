@@ -128,7 +128,7 @@ int write_image(const rt::CommandLine& line, const rt::Scene& scene) {
         else
             rt::render_to<double>(scene, sink, line.threads);
         rt::HelperPool::retire();  // the last job of this process
-        sink.finish();
+        sink.clear_line();
         error = writer.commit();
     }
     if (!error.empty())

@@ -1,7 +1,8 @@
-// Scene-file parsing. One statement per line: a keyword and a fixed number of fields,
-// all separated by spaces, tabs or CR (SPEC section 2). Reading line by line, rather
-// than as one token stream, lets a short SPHERE line be reported on its own line; what
-// each statement means and must hold is scene_statements.h's.
+// Scene-file parsing. One statement per line (ended by LF, CR LF or a lone CR): a
+// keyword and a fixed number of fields, separated by spaces or tabs (\v and \f too;
+// SPEC section 2). Reading line by line, rather than as one token stream, lets a short
+// SPHERE line be reported on its own line; what each statement means and must hold is
+// scene_statements.h's.
 // A large text is cut into pieces at line starts, parsed at once on the helper threads
 // and merged in file order (Piece, merge()): the same scene, and the same first mistake.
 #include "raytracer/parser.h"

@@ -104,7 +104,7 @@ void ProgressSink::erase() const {
     (void)std::fputs(blank.c_str(), stderr);
 }
 
-void ProgressSink::finish() {
+void ProgressSink::clear_line() {
     if (drawn_ == 0) return;
     erase();
     (void)std::fflush(stderr);

@@ -198,11 +198,9 @@ int main(int argc, char** argv) {
     run_case(raytracer, scratch, {"empty-argument", {""}, {"", 2, 0, "an empty scene file name"}, ""});
     const std::string missing = (scratch / "no-such-scene.txt").string();
     run_case(raytracer, scratch, {"missing-file", {missing}, {"", 1, 0, "does not exist"}, missing});
-    run_case(raytracer, scratch,
-             {"folder-as-scene",
-              {bad.string()},
-              {"", 1, 0, "is a directory, expected a scene file"},
-              bad.string()});
+    run_case(
+        raytracer, scratch,
+        {"folder-as-scene", {bad.string()}, {"", 1, 0, "is a folder, expected a scene file"}, bad.string()});
 
     const std::string long_token = (scratch / "long-token.txt").string();
     write_file(long_token, std::string(200'000, 'A') + "\n");

@@ -56,6 +56,7 @@ public:
     // stream knows when the whole image is out.
     void expect_size(std::uint64_t bytes);
     // Appends the bytes (only when error() is empty); a failure is reported by commit().
+    // (write() and expect_size() are the platform's: output_file_posix.cpp, _windows.cpp.)
     void write(const void* data, std::size_t size);
     // Puts the complete file in place. Returns an empty string on success, else what
     // went wrong; nothing is left behind either way.

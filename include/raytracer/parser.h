@@ -52,9 +52,9 @@ inline bool is_utf16(std::string_view text) {
 inline constexpr std::string_view kStandardInput = "-";
 inline std::string scene_name(const std::string& path) { return path == kStandardInput ? "<stdin>" : path; }
 
-// Reads and parses a scene file, on `threads` threads at most (0: as many as there are cores, as a
-// render's --threads). Refuses what is not a scene file at
-// all (missing, unreadable, a directory, empty, binary) with a SceneError that has no line.
+// Reads and parses a scene file (src/load_scene.cpp), on `threads` threads at most (0: as many as
+// there are cores, as a render's --threads). Refuses what is not a scene file at all (missing,
+// unreadable, a folder, too large, empty, UTF-16) with a SceneError that has no line.
 Scene load_scene(const std::string& path, unsigned threads = 0);
 
 }  // namespace rt

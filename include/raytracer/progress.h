@@ -1,6 +1,7 @@
-// A progress line for long renders: when stderr is a terminal and the render has run
-// past a second, one line kept up to date (percent of rows, elapsed, estimate left),
-// cut to the terminal's width so that it never wraps, erased at the end. A RowSink in
+// A progress line for long renders: where main() asks for it (by default when stderr is
+// a terminal; always with --progress) and the render has run past a second, one line
+// kept up to date (percent of rows, elapsed, estimate left), cut to the terminal's
+// width so that it never wraps, erased at the end. A RowSink in
 // front of the real one, told of finished rows by the thread that writes them, under the
 // row ring's lock (row_ring.h), and drawn only when that is the thread that made it: the
 // main thread, which the interrupt handlers run on (interrupts.h; not on Windows), so
@@ -29,7 +30,7 @@ public:
     void rows(const std::uint8_t* bytes, std::size_t size) override { inner_.rows(bytes, size); }
     void rows_finished(int count) override;
     // Erases the line, if one was drawn.
-    void finish();
+    void clear_line();
 
     // Nothing is shown before this much time, and redraws are at least this far apart.
     static constexpr std::chrono::milliseconds kFirstAfter{1000}, kRedrawEvery{250};

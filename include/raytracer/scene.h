@@ -13,6 +13,8 @@ namespace rt {
 
 using Colour = Vec3<double>;  // r, g, b as x, y, z
 
+// A SPHERE statement: an ellipsoid (SPEC section 4), as the file gives it; the renderers
+// take it as an Ellipsoid<Real> (reference/ellipsoid.h).
 struct SphereSpec {
     Vec3<double> centre;
     Vec3<double> scale;  // the unit sphere is scaled by this, then moved to centre

@@ -5,9 +5,10 @@
 // operations in the same order, so a lane's colour is the scalar's, bit for bit.
 //
 // The terms are multiplied in the order the handout writes them: Ka*Ia*O, Kd*Ip*(N.L)*O
-// and Ks*Ip*(R.V)^n; a different order moves a few pixels across a truncation step. A
-// term that is exactly zero is not added (adding it changes at most the sign of a zero
-// channel): a select, where lanes would branch.
+// and Ks*Ip*(R.V)^n; a different order moves a few pixels across a truncation step. The
+// specular term is added only where it is not exactly zero (Ks = 0 or R.V <= 0: adding
+// it would change at most the sign of a zero channel); one ray branches on that, lanes
+// select (lanes.h, whose one-ray overloads of select() and any() this file uses too).
 #pragma once
 
 #include <cstdint>
@@ -98,7 +99,7 @@ bool ambient_only(const Ellipsoid<Real>& e) {
 template <typename T>
 struct SurfacePoint {
     Vec3<T> point, normal, to_viewer;
-    T scaled_length;  // |(P - C) / s^2|, the normal's length before normalising
+    T scaled_length;  // |(P - C) / s^2|, the normal's length: for the fast paths' culling
 };
 
 // The hit at origin + t direction on the ellipsoid of centre and scale^2; inside: the
@@ -121,7 +122,7 @@ RT_ALWAYS_INLINE SurfacePoint<T> surface_point(const Vec3<T>& origin, const Vec3
 template <typename T>
 struct LightRay {
     Vec3<T> to_light, l;
-    T distance;  // |L - P|
+    T distance;  // |light - P|: for the fast paths' culling (exact_culling.h)
     T n_dot_l;
     MaskOf<T> faces;  // N.L > 0: a light behind the surface adds nothing, blocked or not
 };

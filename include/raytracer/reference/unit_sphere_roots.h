@@ -7,7 +7,8 @@
 // uses -ffp-contract=off).
 //
 // Scaling. d' is scaled first, e = d' / m with m the power of two at or below
-// max |d'_i| (exact; long double divides instead), so that |e| is in [1, 2 sqrt(3)) and
+// max |d'_i| (exact; long double takes m = max |d'_i|, its reciprocal rounded far below
+// the scene's eps), so that |e| is in [1, 2 sqrt(3)) and
 // no square of it overflows or underflows (a thickness of 1e-300 makes d'_z ~ 1e300).
 // The ray is o' + s e with s = t / m; a = e.e, b = o'.e, c = o'.o' - 1, and
 // a s^2 + 2 b s + c = 0. No square of o' is needed for the decision: with w = o' x e,
@@ -79,7 +80,9 @@ namespace rt {
 
 // A power of two p with 1 <= p |x| < 2 for a finite x != 0 (|x| below the normal range
 // is taken as the smallest normal): scaling by it is exact. Read from the exponent bits
-// (IEEE 754 binary64 and binary32) so that it vectorises; other formats divide.
+// (IEEE 754 binary64 and binary32) so that it vectorises. Other formats (long double)
+// get 1 / |x| itself, rounded: not a power of two, but its rounding (2^-64) is far
+// below the double ulps the error bounds allow for e.
 template <typename Real>
 RT_ALWAYS_INLINE Real reciprocal_power_of_two(Real x) {
     using std::abs;

@@ -65,7 +65,8 @@ public:
     };
     Scratch make_scratch() const { return {std::vector<std::uint32_t>(lights_.size(), kNoEllipsoid)}; }
 
-    // The three bytes of the pixel whose eye ray goes from the camera through (x, y).
+    // The three bytes of the pixel whose eye ray goes from the camera through (x, y)
+    // (pixel_bytes(): image.h, SPEC section 6).
     void pixel(Real x, Real y, std::uint8_t* out, Scratch& scratch) const {
         pixel_bytes(eye_ray_colour({x, y, near_z_}, scratch), out);
     }
