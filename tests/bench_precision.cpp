@@ -152,7 +152,7 @@ int main(int argc, char** argv) {
         "machines. "
         "Error is against the course key for course scenes (\"key\") and against the long double render "
         "otherwise; **!** marks a scene outside the 0.01% bar. Regenerate with "
-        "`build/ci/tests/bench_precision --out docs` (see docs/precision.md).";
+        "`build/ci/tests/bench_precision --repeats 7 --out docs` (see docs/precision.md).";
     std::error_code ec;
     fs::create_directories(options.out, ec);
     const bool ok =
