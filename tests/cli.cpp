@@ -101,6 +101,7 @@ TEST(a_wrong_command_line_exits_2_with_one_line_on_stderr) {
         {{"a.txt", "b.txt"}, "more than one argument ('a.txt' and 'b.txt')"},
         {{"--version", "extra"}, "--version with other arguments"},
         {{"--help", "--reference"}, "--help with other arguments"},
+        {{"--help", "--version"}, "--help with other arguments"},
         {{""}, "an empty scene file name"},
         {{"--foo", "scene.txt"}, "unknown option '--foo'"},
         {{"scene.txt", "-x"}, "unknown option '-x'"},

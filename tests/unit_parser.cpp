@@ -63,30 +63,41 @@ std::string with_line(int line, const std::string& replacement) {
 
 }  // namespace
 
+// Every field a value of its own, so that two fields read into each other's place show.
 TEST(reads_every_field) {
-    const rt::Scene s = rt::parse_scene(kMinimal, "scene.txt");
-    CHECK_EQ(s.near_plane, 1.0);
-    CHECK_EQ(s.left, -1.0);
-    CHECK_EQ(s.right, 1.0);
-    CHECK_EQ(s.bottom, -1.0);
-    CHECK_EQ(s.top, 1.0);
+    const rt::Scene s = rt::parse_scene(
+        "NEAR 1.5\nLEFT -1.25\nRIGHT 1.75\nBOTTOM -0.5\nTOP 0.75\nRES 4 3\n"
+        "SPHERE s1 1 2 -10 3 4 5 0.1 0.2 0.3 0.4 0.5 0.6 0.7 50\n"
+        "LIGHT l1 6 7 8 0.11 0.12 0.13\n"
+        "BACK 0.21 0.22 0.23\nAMBIENT 0.31 0.32 0.33\nOUTPUT out.ppm\n",
+        "scene.txt");
+    auto is = [](const rt::Vec3<double>& v, double x, double y, double z) {
+        return v.x == x && v.y == y && v.z == z;
+    };
+    CHECK_EQ(s.near_plane, 1.5);
+    CHECK_EQ(s.left, -1.25);
+    CHECK_EQ(s.right, 1.75);
+    CHECK_EQ(s.bottom, -0.5);
+    CHECK_EQ(s.top, 0.75);
     CHECK_EQ(s.columns, 4);
     CHECK_EQ(s.rows, 3);
     CHECK_EQ(s.spheres.size(), 1U);
     const rt::SphereSpec& sp = s.spheres[0];
-    CHECK_EQ(sp.centre.z, -10.0);
-    CHECK_EQ(sp.scale.y, 4.0);
-    CHECK_EQ(sp.colour.x, 0.5);
-    CHECK_EQ(sp.ka, 1.0);
-    CHECK_EQ(sp.kd, 1.0);
-    CHECK_EQ(sp.ks, 0.9);
-    CHECK_EQ(sp.kr, 0.0);
+    CHECK(is(sp.centre, 1, 2, -10));
+    CHECK(is(sp.scale, 3, 4, 5));
+    CHECK(is(sp.colour, 0.1, 0.2, 0.3));
+    CHECK_EQ(sp.ka, 0.4);
+    CHECK_EQ(sp.kd, 0.5);
+    CHECK_EQ(sp.ks, 0.6);
+    CHECK_EQ(sp.kr, 0.7);
     CHECK_EQ(sp.shininess, 50.0);
     CHECK_EQ(sp.line, 7);
     CHECK_EQ(s.lights.size(), 1U);
-    CHECK_EQ(s.lights[0].intensity.z, 0.9);
-    CHECK_EQ(s.background.y, 1.0);
-    CHECK_EQ(s.ambient.x, 0.2);
+    CHECK(is(s.lights[0].position, 6, 7, 8));
+    CHECK(is(s.lights[0].intensity, 0.11, 0.12, 0.13));
+    CHECK_EQ(s.lights[0].line, 8);
+    CHECK(is(s.background, 0.21, 0.22, 0.23));
+    CHECK(is(s.ambient, 0.31, 0.32, 0.33));
     CHECK_EQ(s.output, std::string("out.ppm"));
     CHECK_EQ(s.output_line, 11);
 }
@@ -214,7 +225,13 @@ TEST(reports_bad_resolutions) {
 TEST(reports_missing_and_repeated_keywords) {
     CHECK_EQ(error_of(""), std::string("scene.txt: error: no NEAR line, expected exactly one: NEAR <n>"));
     CHECK_EQ(error_of("\xEF\xBB\xBF"), error_of(""));
-    CHECK(contains(error_of(with_line(11, "")), "scene.txt: error: no OUTPUT line, expected exactly one"));
+    // Each once-only statement of kMinimal left out in turn.
+    const std::pair<int, const char*> once[] = {{1, "NEAR"},   {2, "LEFT"},     {3, "RIGHT"},
+                                                {4, "BOTTOM"}, {5, "TOP"},      {6, "RES"},
+                                                {9, "BACK"},   {10, "AMBIENT"}, {11, "OUTPUT"}};
+    for (const auto& [line, keyword] : once)
+        CHECK(contains(error_of(with_line(line, "")),
+                       std::string("scene.txt: error: no ") + keyword + " line, expected exactly one"));
     CHECK(contains(error_of(with_line(11, "NEAR 2")),
                    "scene.txt:11: error: a second NEAR (the first is on line 1)"));
 }
