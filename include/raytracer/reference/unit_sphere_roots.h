@@ -136,8 +136,8 @@ RT_ALWAYS_INLINE UnitLine<Real> unit_line(Real ox, Real oy, Real oz, Real dx, Re
     const Real mx = abs(pyz) + abs(pzy), my = abs(pzx) + abs(pxz), mz = abs(pxy) + abs(pyx);
     const Real w2 = wx * wx + wy * wy + wz * wz;
     const Real disc = a - w2;
-    const Real bound = scene_epsilon<Real>() *
-                       (Real(10) * (abs(wx) * mx + abs(wy) * my + abs(wz) * mz) + Real(2) * w2 + Real(6) * a);
+    const Real bound = (Real(2) * scene_epsilon<Real>()) *
+                       (Real(5) * (abs(wx) * mx + abs(wy) * my + abs(wz) * mz) + w2 + Real(3) * a);
     const Real miss = disc < -bound ? Real(1) : (w2 > Real(4) * a ? Real(1) : Real(0));
     // The point at t = 1.
     const Real px = ox + dx, py = oy + dy, pz = oz + dz;
