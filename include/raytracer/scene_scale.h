@@ -5,11 +5,11 @@
 // WHY: shading normalises vectors of the scene's size (a normal (P - C)/s^2, the way to
 // a light L - P) through their squared length, which overflows past about 1e154 and
 // underflows below about 1e-154: a scene drawn at 1e160 would lose its lighting, and
-// LEFT -1e308 RIGHT 1e308 would make every eye ray infinite. Multiplying every length (the window,
-// the centres, the scales, the lights) by 2^k is exact while nothing overflows, and
-// every ray parameter t, normal and direction of light is then what it was (the
-// metamorphic tests check this on every hard and course scene), so the image is the
-// one exact arithmetic gives for the scene as written. Colours, coefficients and
+// LEFT -1e308 RIGHT 1e308 would make every eye ray infinite. Multiplying every length
+// (the window, the centres, the scales, the lights) by 2^k is exact while nothing
+// overflows, and every ray parameter t, normal and direction of light is then what it
+// was (the metamorphic tests check this on every hard and course scene), so the image is
+// the one exact arithmetic gives for the scene as written. Colours, coefficients and
 // intensities have no unit and stay as they are.
 #pragma once
 
