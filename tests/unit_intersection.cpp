@@ -1,6 +1,4 @@
 // Ray/ellipsoid intersection: both roots, the near-plane cut, tangency, misses.
-#include <limits>
-
 #include "check.h"
 #include "raytracer/reference/brute_force.h"
 #include "raytracer/reference/ellipsoid.h"
@@ -121,12 +119,12 @@ TEST(a_hit_exactly_on_the_near_plane_is_not_visible) {
     CHECK(tracer.closest(V{}, V{x2, y, -1}, 1.0).found());
 }
 
-// kRootUlps (spec_rules.h): a root within 8 ulps of a ray's bound is at it, where the
-// point at t = 1 does not settle it (a computed root handed over as it is); ulps of
-// double in long double too. 6 ulps off, a root is at the bound; 12 ulps off, past it.
+// kRootUlps (spec_rules.h): a root within 8 scene ulps (scene_epsilon(): double's in
+// long double too) of a ray's bound is at it, where the point at t = 1 does not settle it
+// (a computed root handed over as it is). 6 ulps off, a root is at the bound; 12, past it.
 template <typename Real>
 void roots_near_a_bound_are_at_it() {
-    const Real ulp = Real(std::numeric_limits<double>::epsilon());
+    const Real ulp = rt::scene_epsilon<Real>();
     const Real beyond = rt::visible_beyond(Real(rt::kEyeRayMinT));
     Real t;
     bool inside;

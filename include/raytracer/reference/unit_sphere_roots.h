@@ -35,13 +35,14 @@
 // own), and the difference a - w.w by eps/2 (a + w.w) more. A value of a - w.w
 // computed within
 //   bound = eps (10 sum |w_i| m_i + 2 w.w + 6 a)
-// below zero cannot be told from zero and counts as tangent (an exactly tangent ray is a
-// hit, SPEC section 4); eps is the scene's precision (scene_precision.h), so double and
-// long double decide alike. A ray that passes farther than twice the radius (w.w > 4a)
-// is a miss whatever the bound says: the bound only concerns near-tangent rays. For an
-// eye ray through a facing disc m_i is a few of its radii, so the bound is a few eps,
-// not eps |o'|; it is eps |o'| where o' is long and across the ray (a sphere far off
-// the axis), as the data's own rounding is there.
+// (computed as 2 eps (5 sum + w.w + 3 a), a multiply fewer) below zero cannot be told
+// from zero and counts as tangent (an exactly tangent ray is a hit, SPEC section 4);
+// eps is the scene's precision (scene_precision.h), so double and long double decide
+// alike. A ray that passes farther than twice the radius (w.w > 4a) is a miss whatever
+// the bound says: the bound only concerns near-tangent rays. For an eye ray through a
+// facing disc m_i is a few of its radii, so the bound is a few eps, not eps |o'|; it is
+// eps |o'| where o' is long and across the ray (a sphere far off the axis), as the
+// data's own rounding is there.
 //
 // Roots. q = -(b + sign(b) sqrt(a - w.w)) is free of cancellation, and s = q/a, s = c/q
 // (W. H. Press et al., Numerical Recipes, 3rd ed., section 5.6; D. Goldberg, "What Every
@@ -62,8 +63,8 @@
 // the surface is well conditioned: p = o' + d' with |dp_i| <= 2.5 eps g_i,
 // g_i = |o'_i| + |d'_i| (2 eps from o' and d', eps/2 the sum's rounding), so |p|^2 - 1
 // is off by at most 5 eps sum |p_i| g_i + 2 eps (1.5 eps |p|^2 for the squares' and
-// sums' roundings, at |p| ~ 1); within twice that of zero, p is on the surface, the ray meets it
-// (a hit) and the root nearer t = 1 is 1 exactly: thresholds at t = 1 (the near plane,
+// sums' roundings, at |p| ~ 1); within twice that of zero, p is on the surface, the ray
+// meets it (a hit) and the root nearer t = 1 is 1 exactly: thresholds at t = 1 (the near plane,
 // the light) then decide as in exact arithmetic, alike in every precision. Where that
 // allowance is not small (|p| near overflow) nothing is set.
 #pragma once
