@@ -34,6 +34,28 @@ inline rt::Scene spheres_reversed(rt::Scene scene) {
     return scene;
 }
 
+// The SPHERE lines in the reverse order, but within each set of ellipsoids of the same
+// centre and scale the materials stay in their order of the file: where such surfaces
+// coincide the first listed wins the tie, so this scene should render as the original.
+inline rt::Scene spheres_reversed_ties_kept(const rt::Scene& original) {
+    rt::Scene scene = spheres_reversed(original);
+    auto same_shape = [](const rt::SphereSpec& a, const rt::SphereSpec& b) {
+        return a.centre.x == b.centre.x && a.centre.y == b.centre.y && a.centre.z == b.centre.z &&
+               a.scale.x == b.scale.x && a.scale.y == b.scale.y && a.scale.z == b.scale.z;
+    };
+    const std::size_t n = scene.spheres.size();
+    for (std::size_t i = 0; i < n; ++i) {  // the i-th of its set in the file and in `scene`
+        std::size_t rank = 0;
+        for (std::size_t j = 0; j < i; ++j) rank += same_shape(original.spheres[j], original.spheres[i]);
+        for (std::size_t k = 0; k < n; ++k) {
+            if (!same_shape(scene.spheres[k], original.spheres[i]) || rank-- != 0) continue;
+            scene.spheres[k] = original.spheres[i];
+            break;
+        }
+    }
+    return scene;
+}
+
 // Every scale replaced by its absolute value: the unit sphere is symmetric, so the
 // sign of a scale cannot matter.
 inline rt::Scene scales_made_positive(rt::Scene scene) {
