@@ -351,15 +351,20 @@ TEST(an_existing_output_file_is_replaced_whole) {
     const Scratch folder;
     write_bytes(folder.work / "scene.txt", empty_scene("picture.ppm"));
     // Longer than the new image, so a write in place without truncation would show.
-    write_bytes(folder.work / "picture.ppm", std::string(1000, 'x'));
+    const std::string old_bytes(1000, 'x');
+    write_bytes(folder.work / "picture.ppm", old_bytes);
+    // A second name for the old file: the image is written to a file of its own and put
+    // in the old one's place at once, so the old file, never rewritten, keeps its bytes.
+    fs::create_hard_link(folder.work / "picture.ppm", folder.work / "old.ppm");
     for (int pass = 0; pass < 2; ++pass) {  // replacing the program's own output as well
         const Run r = run(folder, {"scene.txt"});
         CHECK_EQ(r.status, 0);
         CHECK_EQ(r.err, std::string());
         check_is_background_image(folder.work / "picture.ppm");
         CHECK_EQ(read_bytes(folder.work / "picture.ppm").size(), std::size_t{11 + 36});
+        CHECK(read_bytes(folder.work / "old.ppm") == old_bytes);
         // No temporary file left beside it.
-        CHECK_EQ(folder.names(), std::string("picture.ppm scene.txt"));
+        CHECK_EQ(folder.names(), std::string("old.ppm picture.ppm scene.txt"));
     }
 }
 
