@@ -358,6 +358,16 @@ TEST(a_replaced_file_keeps_its_mode) {
             CHECK_EQ(read_bytes(folder.work / "out.ppm").substr(0, 11), std::string("P6\n100 100\n"));
             CHECK_EQ(folder.names(), std::string("out.ppm scene.txt"));
         }
+        {  // set-user-ID and set-group-ID are not carried over to the image
+            const Scratch folder;
+            write_bytes(folder.work / "scene.txt", small_scene("out.ppm"));
+            write_bytes(folder.work / "out.ppm", kPrecious);
+            CHECK_EQ(chmod((folder.work / "out.ppm").c_str(), 06755), 0);
+            Options options;
+            options.named_temporary = named;
+            CHECK_EQ(run(folder, {"scene.txt"}, options), 0);
+            CHECK_EQ(static_cast<unsigned>(fs::status(folder.work / "out.ppm").permissions()), 0755U);
+        }
         const Scratch folder;
         write_bytes(folder.work / "scene.txt", small_scene("new.ppm"));
         const mode_t mask = umask(0);
