@@ -166,4 +166,11 @@ std::string PendingFile::commit() {
     return error;
 }
 
+std::string write_whole_file(const char* file_name, const void* data, std::size_t size) {
+    PendingFile file(file_name);
+    if (!file.error().empty()) return file.error();
+    file.write(data, size);
+    return file.commit();
+}
+
 }  // namespace rt

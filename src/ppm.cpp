@@ -50,59 +50,79 @@ std::string save_imageP6(int width, int height, const char* file_name, const uns
 }
 
 std::string save_imageP3(int width, int height, const char* file_name, const unsigned char* pixels) {
-    PendingFile file(file_name);
-    if (!file.error().empty()) return file.error();
     std::string text = "P3\n" + std::to_string(width) + ' ' + std::to_string(height) + "\n255\n";
     const unsigned char* p = pixels;
     for (int row = 0; row < height; ++row) {
         for (int column = 0; column < width * 3; ++column) text += ' ' + std::to_string(int{*p++});
         text += '\n';
     }
-    file.write(text.data(), text.size());
-    return file.commit();
+    return write_whole_file(file_name, text.data(), text.size());
 }
 
-bool read_ppm(const std::string& file_name, Image& image, std::string& error) {
+namespace {
+
+using File = std::unique_ptr<std::FILE, int (*)(std::FILE*)>;
+
+File open_to_read(const std::string& file_name) {
 #ifdef _WIN32
     std::FILE* const file = _wfopen(std::filesystem::u8path(file_name).c_str(), L"rb");  // any Unicode name
 #else
     std::FILE* const file = std::fopen(file_name.c_str(), "rb");
 #endif
-    const std::unique_ptr<std::FILE, int (*)(std::FILE*)> in(file, &std::fclose);
+    return File(file, &std::fclose);
+}
+
+// Header: P6, width, height, maxval, separated by whitespace and # comments, then
+// exactly one whitespace byte before the pixels. False, with `error` set, where the file
+// is not a binary PPM with maxval 255 of at most 2^31 pixels.
+bool read_header(std::FILE* in, const std::string& file_name, int& width, int& height, std::string& error) {
+    std::string fields[4];
+    for (std::string& field : fields) {
+        int c = std::fgetc(in);
+        while (c != EOF && (std::isspace(c) || c == '#')) {
+            if (c == '#')
+                while (c != EOF && c != '\n') c = std::fgetc(in);
+            c = std::fgetc(in);
+        }
+        while (c != EOF && !std::isspace(c)) {
+            field += static_cast<char>(c);
+            c = std::fgetc(in);
+        }
+    }
+    long long w = 0, h = 0;
+    try {
+        w = std::stoll(fields[1]);
+        h = std::stoll(fields[2]);
+    } catch (const std::exception&) {
+        w = h = 0;
+    }
+    if (fields[0] != "P6" || fields[3] != "255" || w <= 0 || h <= 0 || w * h > (1LL << 31)) {
+        error = "'" + file_name + "' is not a binary PPM (P6) with maxval 255";
+        return false;
+    }
+    width = static_cast<int>(w), height = static_cast<int>(h);
+    return true;
+}
+
+}  // namespace
+
+bool read_ppm_size(const std::string& file_name, int& width, int& height, std::string& error) {
+    const File in = open_to_read(file_name);
     if (!in) {
         error = "cannot open '" + file_name + "'";
         return false;
     }
-    // Header: P6, width, height, maxval, separated by whitespace and # comments,
-    // then exactly one whitespace byte before the pixels.
-    std::string fields[4];
-    for (std::string& field : fields) {
-        int c = std::fgetc(in.get());
-        while (c != EOF && (std::isspace(c) || c == '#')) {
-            if (c == '#')
-                while (c != EOF && c != '\n') c = std::fgetc(in.get());
-            c = std::fgetc(in.get());
-        }
-        while (c != EOF && !std::isspace(c)) {
-            field += static_cast<char>(c);
-            c = std::fgetc(in.get());
-        }
-    }
-    long long width = 0, height = 0;
-    try {
-        width = std::stoll(fields[1]);
-        height = std::stoll(fields[2]);
-    } catch (const std::exception&) {
-        width = height = 0;
-    }
-    if (fields[0] != "P6" || fields[3] != "255" || width <= 0 || height <= 0 ||
-        width * height > (1LL << 31)) {
-        error = "'" + file_name + "' is not a binary PPM (P6) with maxval 255";
+    return read_header(in.get(), file_name, width, height, error);
+}
+
+bool read_ppm(const std::string& file_name, Image& image, std::string& error) {
+    const File in = open_to_read(file_name);
+    if (!in) {
+        error = "cannot open '" + file_name + "'";
         return false;
     }
-    image.width = static_cast<int>(width);
-    image.height = static_cast<int>(height);
-    image.rgb.assign(static_cast<std::size_t>(width * height * 3), 0);
+    if (!read_header(in.get(), file_name, image.width, image.height, error)) return false;
+    image.rgb.assign(static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) * 3, 0);
     if (std::fread(image.rgb.data(), 1, image.rgb.size(), in.get()) != image.rgb.size()) {
         error = "'" + file_name + "' is shorter than its header says";
         return false;

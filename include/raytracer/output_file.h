@@ -94,4 +94,8 @@ private:
     std::string error_;
 };
 
+// The bytes as the whole file file_name, put in place when complete (Destination::Replace).
+// Returns an empty string on success, else what went wrong, with the name.
+std::string write_whole_file(const char* file_name, const void* data, std::size_t size);
+
 }  // namespace rt

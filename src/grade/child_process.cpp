@@ -178,8 +178,9 @@ void install_interrupt_handlers() {
     struct sigaction action {};
     action.sa_handler = grader_on_interrupt;
     sigemptyset(&action.sa_mask);
-    sigaction(SIGINT, &action, nullptr);
-    sigaction(SIGTERM, &action, nullptr);
+    // SIGHUP: the terminal closed; SIGPIPE: the report's reader went (| head): each stops
+    // the grading as an interrupt does, so that the scratch folder is removed.
+    for (const int signal : {SIGINT, SIGTERM, SIGHUP, SIGPIPE}) sigaction(signal, &action, nullptr);
 }
 
 ChildOutcome run_child(const ChildCommand& command) {
@@ -213,8 +214,16 @@ ChildOutcome run_child(const ChildCommand& command) {
     int status = 0;
     outcome.end = ChildOutcome::End::exited;
     auto pause = std::chrono::microseconds(100);  // grows to 10 ms: quick renders are timed closely
-    while (waitpid(pid, &status, WNOHANG) == 0) {
+    // Until it ends; then whatever it started in its group goes too (kill_and_reap), before
+    // it is reaped, so that the group's number cannot have been given to another.
+    for (;;) {
+        siginfo_t ended{};
         const bool late = seconds_since(start) > command.timeout_seconds;
+        if (waitid(P_PID, static_cast<id_t>(pid), &ended, WEXITED | WNOHANG | WNOWAIT) == 0 &&
+            ended.si_pid != 0) {
+            kill_and_reap(pid, status);
+            break;
+        }
         if (late || interrupting_signal() != 0) {
             kill_and_reap(pid, status);
             outcome.end = late ? ChildOutcome::End::timed_out : ChildOutcome::End::interrupted;

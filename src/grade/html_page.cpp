@@ -2,9 +2,9 @@
 
 #include <cctype>
 #include <cstdio>
-#include <fstream>
 #include <sstream>
 
+#include "raytracer/output_file.h"
 #include "report.h"
 
 namespace fs = std::filesystem;
@@ -105,11 +105,9 @@ std::string write_html_page(const fs::path& page, const std::vector<SceneResult>
             write_picture(out, results[i], url_of(fs::relative(fs::absolute(pictures[i], ec), folder, ec)));
     out << "</body>\n</html>\n";
 
-    std::ofstream file(page, std::ios::binary);
-    file << out.str();
-    file.close();
-    if (!file) return "cannot write '" + page.string() + "'";
-    return {};
+    const std::string text = out.str();
+    if (page.has_parent_path()) fs::create_directories(page.parent_path(), ec);  // as --diff-dir's folder
+    return rt::write_whole_file(page.u8string().c_str(), text.data(), text.size());
 }
 
 }  // namespace grade

@@ -30,7 +30,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr int kSkipped = 77;  // CTest's SKIP_RETURN_CODE of the golden tests
+constexpr int kCannotReadOrWrite = 3;  // the scene folder, the scratch folder, pictures, page, report
+constexpr int kSkipped = 77;           // CTest's SKIP_RETURN_CODE of the golden tests
 
 // The folder of this program, where raytracer.exe is by default (beside it, as installed
 // and in the build folder). argv[0] is the fallback: it lacks the folder when found on PATH.
@@ -47,13 +48,19 @@ fs::path own_folder(const char* argv0) {
     return fs::absolute(argv0, ec).parent_path();
 }
 
-std::vector<fs::path> scenes_to_grade(const grade::Options& options) {
+// The *.txt files of the scene folder (--only: the one), sorted; empty with `error` set
+// where the folder cannot be read.
+std::vector<fs::path> scenes_to_grade(const grade::Options& options, std::error_code& error) {
     std::vector<fs::path> scenes;
-    for (const fs::directory_entry& entry : fs::directory_iterator(options.scenes)) {
-        const fs::path& p = entry.path();
-        if (p.extension() == ".txt" && (options.only.empty() || p.stem() == options.only))
-            scenes.push_back(fs::absolute(p));
+    for (fs::directory_iterator it(options.scenes, error); !error && it != fs::directory_iterator();
+         it.increment(error)) {
+        const fs::path& p = it->path();
+        std::error_code ignored;
+        if (p.extension() == ".txt" && it->is_regular_file(ignored) &&
+            (options.only.empty() || p.stem() == options.only))
+            scenes.push_back(p);
     }
+    if (error) scenes.clear();
     std::sort(scenes.begin(), scenes.end());
     return scenes;
 }
@@ -65,28 +72,41 @@ fs::path picture_folder(const grade::Options& options) {
     return options.html.parent_path() / (options.html.stem().string() + "-pictures");
 }
 
-// Writes the picture of a scene that failed on its pixels; returns its path, or empty.
-fs::path write_picture(const grade::SceneResult& result, const fs::path& folder) {
+// Writes the picture of a scene that failed on its pixels; returns its path, or empty
+// (with `failed` set where it could not be written).
+fs::path write_picture(const grade::SceneResult& result, const fs::path& folder, bool& failed) {
     if (folder.empty() || !result.problem.empty() || result.passed()) return {};
     std::error_code ec;
     fs::create_directories(folder, ec);
     fs::path file = folder / (result.name + ".png");
     const std::string error =
-        grade::write_png(file.string(), grade::difference_picture(result.key_name, result.key, result.got));
+        ec ? "cannot make the folder '" + folder.string() + "': " + ec.message()
+           : grade::write_png(file.u8string(),
+                              grade::difference_picture(result.key_name, result.key, result.got));
     if (error.empty()) return file;
-    std::cerr << "raytracer-grade: " << error << "\n";
+    std::cerr << "raytracer-grade: error: " << error << "\n";
+    failed = true;
     return {};
 }
 
-// Fills the defaults; returns 0 to go on, else the exit status.
+// Fills the defaults; returns 0 to go on, else the exit status. The scene folder is made
+// absolute and lexically normal, so that "scenes/" and "." name their folder as
+// "scenes" does, and the keys are found beside it.
 int complete_options(grade::Options& options, const char* argv0) {
     if (options.scenes.empty()) options.scenes = fs::u8path(RAYTRACER_DEFAULT_SCENES);
+    std::error_code ec;
+    options.scenes = fs::absolute(options.scenes, ec).lexically_normal();
+    if (!options.scenes.has_filename()) options.scenes = options.scenes.parent_path();
     if (options.raytracer.empty()) options.raytracer = own_folder(argv0) / "raytracer.exe";
     if (options.keys.empty()) options.keys = options.scenes.parent_path() / "keys";
-    std::error_code ec;
-    if (!fs::is_directory(options.scenes, ec)) {
+    if (!fs::exists(options.scenes, ec)) {
         std::cout << "SKIPPED: no scene folder at " << options.scenes.string() << " (pass SCENES_DIR)\n";
         return kSkipped;
+    }
+    if (!fs::is_directory(options.scenes, ec)) {
+        std::cerr << "raytracer-grade: error: " << options.scenes.string()
+                  << " is not a folder, expected the folder of the scenes\n";
+        return 2;
     }
     if (!fs::is_regular_file(options.raytracer, ec)) {
         std::cerr << "raytracer-grade: error: no program at " << options.raytracer.string()
@@ -98,20 +118,93 @@ int complete_options(grade::Options& options, const char* argv0) {
     return 0;
 }
 
+// Why the --html page may not be written where asked, found before any scene is graded:
+// it would replace a scene or a key being graded, the program under test, a
+// write-protected file, or something that is not a file. Empty to go on.
+std::string html_refusal(const grade::Options& options, const std::vector<fs::path>& scenes) {
+    std::error_code ec;
+    const fs::file_status status = fs::status(options.html, ec);
+    if (!fs::exists(status)) return {};
+    const std::string page = "--html '" + options.html.string() + "'";
+    if (!fs::is_regular_file(status)) return page + " is not a file";
+    auto is = [&](const fs::path& other) { return fs::equivalent(options.html, other, ec); };
+    for (const fs::path& scene : scenes) {
+        if (is(scene)) return page + " is a scene being graded";
+        if (is(grade::key_for(options.keys, scene))) return page + " is a key being graded";
+    }
+    if (is(options.raytracer)) return page + " is the program being graded";
+    if ((status.permissions() & fs::perms::owner_write) == fs::perms::none)
+        return page + " is write-protected";
+    return {};
+}
+
+// A new folder of the grader's own in the system's temporary folder; empty, with
+// `error` set, where none can be made.
+fs::path make_scratch_folder(std::string& error) {
+    std::error_code ec;
+    const fs::path temporary = fs::temp_directory_path(ec);
+    if (ec) {
+        error = "no temporary folder for the renders (" + ec.message() + "; set TMPDIR)";
+        return {};
+    }
+    std::mt19937_64 random(std::random_device{}());
+    const fs::path scratch = temporary / ("raytracer-grade-" + std::to_string(random()));
+    if (!fs::create_directories(scratch, ec)) {
+        error = "cannot make a scratch folder in '" + temporary.string() +
+                "': " + (ec ? ec.message() : std::string("it exists already"));
+        return {};
+    }
+    return scratch;
+}
+
 // Grades the scenes in order; stops early when the grader is interrupted.
 std::vector<grade::SceneResult> grade_all(const std::vector<fs::path>& scenes, const grade::Options& options,
-                                          const fs::path& scratch, std::vector<fs::path>& pictures) {
+                                          const fs::path& scratch, std::vector<fs::path>& pictures,
+                                          bool& pictures_failed) {
     std::vector<grade::SceneResult> results;
     grade::print_header();
     for (const fs::path& scene : scenes) {
         grade::SceneResult result = grade::grade_scene(scene, options, scratch);
         if (result.interrupted) break;
-        pictures.push_back(write_picture(result, picture_folder(options)));
+        pictures.push_back(write_picture(result, picture_folder(options), pictures_failed));
         grade::print_scene(result, pictures.back().generic_string());
         result.key = result.got = rt::Image{};  // the pictures are written; free the pixels
         results.push_back(std::move(result));
     }
     return results;
+}
+
+// Whether all that was printed on standard output reached it (not a full disk).
+bool report_written() {
+    std::cout.flush();
+    return std::cout && std::fflush(stdout) == 0 && std::ferror(stdout) == 0;
+}
+
+int cannot_write_report() {
+    std::cerr << "raytracer-grade: error: cannot write the report to standard output\n";
+    return kCannotReadOrWrite;
+}
+
+// The scenes to grade, or the exit status that ends the run before any is graded.
+int choose_scenes(const grade::Options& options, std::vector<fs::path>& scenes) {
+    std::error_code unreadable;
+    scenes = scenes_to_grade(options, unreadable);
+    if (unreadable) {
+        std::cerr << "raytracer-grade: error: cannot read the scene folder " << options.scenes.string()
+                  << ": " << unreadable.message() << "\n";
+        return kCannotReadOrWrite;
+    }
+    if (scenes.empty()) {
+        std::cerr << "raytracer-grade: error: no scene "
+                  << (options.only.empty() ? "*.txt" : options.only + ".txt") << " in "
+                  << options.scenes.string() << "\n";
+        return options.only.empty() ? 1 : 2;
+    }
+    if (options.html.empty()) return 0;
+    const std::string refusal = html_refusal(options, scenes);
+    if (refusal.empty()) return 0;
+    std::cerr << "raytracer-grade: error: " << refusal << ", expected a new or replaceable page\n";
+    return 2;
 }
 
 }  // namespace
@@ -121,29 +214,28 @@ int main(int argc, char** argv) {
     const std::string error = grade::parse_command_line(argc, argv, options);
     if (options.help && error.empty()) {
         std::cout << grade::help_text(RAYTRACER_DEFAULT_SCENES);
-        return 0;
+        return report_written() ? 0 : cannot_write_report();
     }
     if (!error.empty()) {
         std::cerr << "raytracer-grade: error: " << error << " (see --help)\n";
         return 2;
     }
     if (const int status = complete_options(options, argv[0]); status != 0) return status;
-    const std::vector<fs::path> scenes = scenes_to_grade(options);
-    if (scenes.empty()) {
-        std::cerr << "raytracer-grade: error: no scene "
-                  << (options.only.empty() ? "*.txt" : options.only + ".txt") << " in "
-                  << options.scenes.string() << "\n";
-        return 1;
-    }
+    std::vector<fs::path> scenes;
+    if (const int status = choose_scenes(options, scenes); status != 0) return status;
 
     grade::install_interrupt_handlers();
-    std::mt19937_64 random(std::random_device{}());
-    const fs::path scratch = fs::temp_directory_path() / ("raytracer-grade-" + std::to_string(random()));
-    fs::create_directories(scratch);
+    std::string scratch_error;
+    const fs::path scratch = make_scratch_folder(scratch_error);
+    if (scratch.empty()) {
+        std::cerr << "raytracer-grade: error: " << scratch_error << "\n";
+        return kCannotReadOrWrite;
+    }
     std::vector<fs::path> pictures;
     std::vector<grade::SceneResult> results;
+    bool pictures_failed = false;
     try {
-        results = grade_all(scenes, options, scratch, pictures);
+        results = grade_all(scenes, options, scratch, pictures, pictures_failed);
     } catch (const std::exception& e) {
         std::cerr << "raytracer-grade: error: " << e.what() << "\n";
     }
@@ -156,13 +248,17 @@ int main(int argc, char** argv) {
     }
     if (results.size() != scenes.size()) return 1;
     const std::string summary = grade::print_summary(results);
+    bool page_written = true;
     if (!options.html.empty()) {
         const std::string html_error = grade::write_html_page(options.html, results, pictures, summary);
-        if (!html_error.empty())
-            std::cerr << "raytracer-grade: " << html_error << "\n";
+        page_written = html_error.empty();
+        if (!page_written)
+            std::cerr << "raytracer-grade: error: " << html_error << "\n";
         else
             std::cout << "page: " << options.html.string() << "\n";
     }
+    if (!report_written()) return cannot_write_report();
+    if (!page_written || pictures_failed) return kCannotReadOrWrite;
     const bool all_passed =
         std::all_of(results.begin(), results.end(), [](const auto& r) { return r.passed(); });
     return all_passed ? 0 : 1;

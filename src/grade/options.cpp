@@ -1,48 +1,75 @@
 #include "options.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <vector>
 
 namespace grade {
 
+namespace {
+
+// The options that take a value, as --name VALUE or --name=VALUE.
+std::filesystem::path* path_option(const std::string& name, Options& options) {
+    if (name == "--raytracer") return &options.raytracer;
+    if (name == "--keys") return &options.keys;
+    if (name == "--diff-dir") return &options.diff_dir;
+    if (name == "--html") return &options.html;
+    return nullptr;
+}
+
+std::string set_timeout(const std::string& value, Options& options) {
+    std::size_t used = 0;
+    double seconds = 0;
+    try {
+        seconds = std::stod(value, &used);
+    } catch (const std::exception&) {
+        used = 0;
+    }
+    if (used != value.size() || !std::isfinite(seconds) || seconds <= 0 || seconds > 1e6)
+        return "--timeout '" + value + "' is not a number of seconds above 0 and at most 1000000";
+    options.timeout_seconds = seconds;
+    return {};
+}
+
+}  // namespace
+
 std::string parse_command_line(int argc, char** argv, Options& options) {
     const std::vector<std::string> args(argv + 1, argv + argc);
+    std::vector<std::string> given;  // each option at most once, as a repeat is a slip
     for (std::size_t i = 0; i < args.size(); ++i) {
-        const std::string& a = args[i];
-        if (a == "--help" || a == "-h") {
+        std::string name = args[i], value;
+        const std::size_t equals = name.rfind("--", 0) == 0 ? name.find('=') : std::string::npos;
+        if (equals != std::string::npos) value = name.substr(equals + 1), name.resize(equals);
+        if (name == "--help" || name == "-h") {
+            if (equals != std::string::npos) return name + " takes no value";
             options.help = true;
             continue;
         }
-        const bool takes_value = a == "--raytracer" || a == "--keys" || a == "--only" || a == "--timeout" ||
-                                 a == "--diff-dir" || a == "--html";
-        if (takes_value && i + 1 >= args.size()) return a + " needs a value";
-        if (a == "--raytracer") {
-            options.raytracer = std::filesystem::u8path(args[++i]);
-        } else if (a == "--keys") {
-            options.keys = std::filesystem::u8path(args[++i]);
-        } else if (a == "--only") {
-            options.only = args[++i];
-        } else if (a == "--diff-dir") {
-            options.diff_dir = std::filesystem::u8path(args[++i]);
-        } else if (a == "--html") {
-            options.html = std::filesystem::u8path(args[++i]);
-        } else if (a == "--timeout") {
-            const std::string& value = args[++i];
-            std::size_t used = 0;
-            double seconds = 0;
-            try {
-                seconds = std::stod(value, &used);
-            } catch (const std::exception&) {
-                used = 0;
-            }
-            if (used != value.size() || !std::isfinite(seconds) || seconds <= 0 || seconds > 1e6)
-                return "--timeout '" + value + "' is not a number of seconds between 0 and 1000000";
-            options.timeout_seconds = seconds;
-        } else if (!a.empty() && a[0] != '-') {
-            options.scenes = std::filesystem::u8path(a);
-        } else {
-            return "unknown option '" + a + "'";
+        if (name.empty() || name[0] != '-') {
+            if (!options.scenes.empty())
+                return "two scene folders, '" + options.scenes.u8string() + "' and '" + name +
+                       "', expected one";
+            if (name.empty()) return "an empty scene folder name";
+            options.scenes = std::filesystem::u8path(name);
+            continue;
+        }
+        if (path_option(name, options) == nullptr && name != "--only" && name != "--timeout")
+            return "unknown option '" + args[i] + "'";
+        if (equals == std::string::npos) {
+            if (i + 1 >= args.size()) return name + " needs a value";
+            value = args[++i];
+        }
+        if (value.empty()) return name + " needs a value, not an empty one";
+        if (std::find(given.begin(), given.end(), name) != given.end()) return name + " given twice";
+        given.push_back(name);
+        if (std::filesystem::path* path = path_option(name, options)) {
+            *path = std::filesystem::u8path(value);
+        } else if (name == "--only") {  // testShadow or testShadow.txt
+            const bool has_txt = value.size() > 4 && value.compare(value.size() - 4, 4, ".txt") == 0;
+            options.only = has_txt ? value.substr(0, value.size() - 4) : value;
+        } else if (const std::string error = set_timeout(value, options); !error.empty()) {
+            return error;
         }
     }
     return {};
@@ -77,8 +104,12 @@ std::string help_text(const std::string& default_scenes) {
            "rim where the near plane cuts one). Any other differing pixel fails the scene:\n"
            "the course gives no partial marks. A passing scene earns 2 marks.\n"
            "\n"
+           "Options take their value as --name VALUE or --name=VALUE, each at most once.\n"
+           "\n"
            "Exit status: 0 when every scene passes, 1 when one fails, 2 on a bad command\n"
-           "line, 77 when the scene folder does not exist.\n";
+           "line (or --only naming no scene), 3 when the grader cannot read the scene\n"
+           "folder or write its scratch folder, pictures, page or report, 77 when the\n"
+           "scene folder does not exist.\n";
 }
 
 }  // namespace grade

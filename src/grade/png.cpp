@@ -1,10 +1,9 @@
 #include "png.h"
 
 #include <array>
-#include <filesystem>
-#include <fstream>
 
 #include "deflate.h"
+#include "raytracer/output_file.h"
 
 namespace grade {
 namespace {
@@ -87,11 +86,7 @@ std::vector<std::uint8_t> encode_png(const rt::Image& image) {
 
 std::string write_png(const std::string& file_name, const rt::Image& image) {
     const std::vector<std::uint8_t> bytes = encode_png(image);
-    std::ofstream out(std::filesystem::u8path(file_name), std::ios::binary);
-    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-    out.close();
-    if (!out) return "cannot write '" + file_name + "'";
-    return {};
+    return rt::write_whole_file(file_name.c_str(), bytes.data(), bytes.size());
 }
 
 }  // namespace grade

@@ -57,10 +57,11 @@ void print_scene(const SceneResult& r, const std::string& picture) {
 }
 
 std::string print_summary(const std::vector<SceneResult>& results) {
-    long long passed = 0, not_rendered = 0;
+    long long passed = 0, not_rendered = 0, ungradable = 0;
     for (const SceneResult& r : results) {
         passed += r.passed() ? 1 : 0;
-        not_rendered += r.problem.empty() ? 0 : 1;
+        ungradable += r.ungradable ? 1 : 0;
+        not_rendered += r.problem.empty() || r.ungradable ? 0 : 1;
     }
     const long long scenes = static_cast<long long>(results.size());
     std::string line = "marks " + std::to_string(kMarksPerScene * passed) + "/" +
@@ -69,9 +70,12 @@ std::string print_summary(const std::vector<SceneResult>& results) {
         line += scenes == 1 ? "the scene passes" : "all " + std::to_string(scenes) + " scenes pass";
     } else {
         line += std::to_string(passed) + " of " + plural(scenes, "scene passes", "scenes pass");
+        if (ungradable > 0)
+            line += "; " + std::to_string(ungradable) + " without a readable scene or key to grade by";
         if (not_rendered > 0) line += "; " + std::to_string(not_rendered) + " gave no image to compare";
-        if (scenes - passed - not_rendered > 0)
-            line += "; " + plural(scenes - passed - not_rendered, "differs", "differ") + " beyond the rule";
+        if (scenes - passed - not_rendered - ungradable > 0)
+            line += "; " + plural(scenes - passed - not_rendered - ungradable, "differs", "differ") +
+                    " beyond the rule";
     }
     line += passed == scenes ? ": PASS" : ": FAIL";
     std::printf("%s\n", line.c_str());

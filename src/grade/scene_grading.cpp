@@ -10,6 +10,7 @@
 #include "child_process.h"
 #include "raytracer/parser.h"
 #include "raytracer/ppm.h"
+#include "raytracer/shown.h"
 
 namespace fs = std::filesystem;
 
@@ -21,7 +22,7 @@ std::string first_line_of(const fs::path& file) {
     std::string line;
     while (std::getline(in, line)) {
         if (!line.empty() && line.back() == '\r') line.pop_back();
-        if (!line.empty()) return line.size() > 200 ? line.substr(0, 200) + "..." : line;
+        if (!line.empty()) return rt::escaped(line, 200);  // no escape sequence reaches the terminal
     }
     return {};
 }
@@ -70,22 +71,29 @@ std::string files_in(const fs::path& folder) {
     return list;
 }
 
-// Reads the image the run wrote; returns why not, for the student.
-std::string read_output(const fs::path& folder, const std::string& output_name, rt::Image& image) {
+// Reads the image the run wrote; returns why not, for the student. Its size is checked
+// against the key's before its pixels are read, so that a header cannot make the grader
+// take gigabytes.
+std::string read_output(const fs::path& folder, const std::string& output_name, const rt::Image& key,
+                        rt::Image& image) {
     const fs::path output = folder / fs::u8path(output_name);
     std::error_code ec;
+    if (fs::is_directory(output, ec)) return "wrote a folder named " + output_name + " (OUTPUT of the scene)";
     if (!fs::is_regular_file(output, ec))
         return "wrote nothing named " + output_name + " (OUTPUT of the scene); " + files_in(folder);
     char magic[2] = {0, 0};
     std::ifstream(output, std::ios::binary).read(magic, 2);
     if (magic[0] == 'P' && magic[1] == '3') return "P3 written; the course requires P6";
     std::string error;
-    if (!rt::read_ppm(output.string(), image, error)) {
-        const std::size_t at = error.find(output.string());
-        if (at != std::string::npos) error.replace(at, output.string().size(), output_name);
-        return error;
-    }
-    return {};
+    int width = 0, height = 0;
+    if (rt::read_ppm_size(output.u8string(), width, height, error) &&
+        (width != key.width || height != key.height))
+        return "wrote " + std::to_string(width) + "x" + std::to_string(height) + ", the key is " +
+               std::to_string(key.width) + "x" + std::to_string(key.height);
+    if (error.empty() && rt::read_ppm(output.u8string(), image, error)) return {};
+    const std::size_t at = error.find(output.u8string());
+    if (at != std::string::npos) error.replace(at, output.u8string().size(), output_name);
+    return error;
 }
 
 // The handout asks for 5 s at 400x400 in Release; larger images get proportionally longer.
@@ -128,10 +136,12 @@ SceneResult grade_scene(const fs::path& scene, const Options& options, const fs:
         output_name = rt::load_scene(scene.string()).output;
     } catch (const std::exception& e) {
         result.problem = std::string("the scene itself cannot be read: ") + e.what();
+        result.ungradable = true;
         return result;
     }
     if (!rt::read_ppm(key_file.string(), result.key, error)) {
         result.problem = "no usable key: " + error;
+        result.ungradable = true;
         return result;
     }
     // A folder of the scene's own: one that a crashed program's files keep from removal
@@ -147,12 +157,7 @@ SceneResult grade_scene(const fs::path& scene, const Options& options, const fs:
     if (run.end != ChildOutcome::End::exited || run.code != 0)
         result.problem = describe_failed_run(run, options, command.stderr_file);
     else
-        result.problem = read_output(folder, output_name, result.got);
-    if (result.problem.empty() &&
-        (result.got.width != result.key.width || result.got.height != result.key.height))
-        result.problem = "wrote " + std::to_string(result.got.width) + "x" +
-                         std::to_string(result.got.height) + ", the key is " +
-                         std::to_string(result.key.width) + "x" + std::to_string(result.key.height);
+        result.problem = read_output(folder, output_name, result.key, result.got);
     if (result.problem.empty()) result.judgement = judge(result.key_name, result.key, result.got);
     if (run.end == ChildOutcome::End::exited) note_if_slow(result);
     remove_folder(folder);

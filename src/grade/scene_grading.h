@@ -18,6 +18,7 @@ struct SceneResult {
     std::string key_name;            // "keyShadow"
     std::string problem;             // why there is no image to compare; empty when compared
     std::vector<std::string> notes;  // facts that do not fail the scene (slow render)
+    bool ungradable = false;         // the scene or its key cannot be read: not the program's doing
     bool interrupted = false;        // the grader itself was interrupted meanwhile
     double seconds = 0;              // the render's wall time
     Judgement judgement;

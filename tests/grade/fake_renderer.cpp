@@ -9,6 +9,8 @@
 //   segfault    dies by a segmentation fault              exit1       a line on stderr, status 1
 //   wrong_size  the key's top-left half in each direction wrong_name  the image as a.ppm
 //   p3          the key as a text (P3) PPM                shifted     the key moved one pixel right
+//   huge_header only a header of 30000x30000 pixels        escapes     terminal escapes on stderr, status 3
+//   straggler   the key, leaving a process running (POSIX; its pid to FAKE_RENDERER_PID_FILE)
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
@@ -138,7 +140,22 @@ int main(int argc, char** argv) {
         std::cerr << "fake: error: cannot open the scene file\nsecond line\n";
         return 1;
     }
+    if (mode == "escapes") {
+        std::cerr << "\x1b[31mred\x1b[0m \a\n";
+        return 3;
+    }
     const std::string output = scene_output(argv[1]);
+    if (mode == "huge_header") {
+        std::ofstream(output, std::ios::binary) << "P6\n30000 30000\n255\n";
+        return 0;
+    }
+#ifndef _WIN32
+    if (mode == "straggler" && fork() == 0) {
+        if (const char* pid_file = std::getenv("FAKE_RENDERER_PID_FILE"))
+            std::ofstream(pid_file) << getpid() << "\n";
+        for (;;) std::this_thread::sleep_for(std::chrono::seconds(1));
+    }
+#endif
     Image image = read_key(argv[1]);
     if (mode == "black") image.rgb.assign(image.rgb.size(), 0);
     if (mode == "pixel64") {

@@ -1,7 +1,8 @@
 # Included by tests/CMakeLists.txt (so that the Wine block there covers these tests too).
 # The programs are built always (clang-tidy reads every source); the tests need the course
 # scenes and keys, as the golden tests do, and are left out where those are absent.
-set(fake_modes black pixel64 one_level hang segfault exit1 wrong_size wrong_name p3 shifted)
+set(fake_modes black pixel64 one_level hang segfault exit1 wrong_size wrong_name p3 shifted huge_header escapes
+               straggler)
 foreach(mode ${fake_modes})
   add_executable(fake_${mode} grade/fake_renderer.cpp)
   target_compile_definitions(fake_${mode} PRIVATE FAKE_MODE="${mode}")
@@ -15,19 +16,21 @@ if(NOT WIN32)
   add_executable(grade_interrupt grade/interrupt.cpp check_main.cpp)
   target_link_libraries(grade_interrupt PRIVATE raytracer_warnings)
   target_compile_definitions(grade_interrupt PRIVATE RAYTRACER_GRADE="$<TARGET_FILE:raytracer-grade>"
-                             FAKE_HANG="$<TARGET_FILE:fake_hang>" COURSE_SCENES="${course_scene_dir}")
+                             FAKE_HANG="$<TARGET_FILE:fake_hang>" FAKE_ONE_LEVEL="$<TARGET_FILE:fake_one_level>"
+                             FAKE_STRAGGLER="$<TARGET_FILE:fake_straggler>" COURSE_SCENES="${course_scene_dir}")
 endif()
 if(NOT EXISTS "${course_scene_dir}/testShadow.txt")
   return()
 endif()
 
 set(grade_out "${CMAKE_CURRENT_BINARY_DIR}/grade-out")
+set(GRADE_SCENES "${course_scene_dir}")  # the scene folder each grade_test() passes last
 # grade_test(NAME MODE STATUS EXPECT [ARGS ...]): EXPECT is a '|'-separated list of texts.
 function(grade_test name mode status expect)
   list(JOIN ARGN "|" args)
   add_test(NAME grade.${name}
            COMMAND ${CMAKE_COMMAND} -DGRADER=$<TARGET_FILE:raytracer-grade> "-DEMULATOR=${CMAKE_CROSSCOMPILING_EMULATOR}"
-                   "-DARGS=--raytracer|$<TARGET_FILE:fake_${mode}>|${args}|${course_scene_dir}" -DSTATUS=${status}
+                   "-DARGS=--raytracer|$<TARGET_FILE:fake_${mode}>|${args}|${GRADE_SCENES}" -DSTATUS=${status}
                    "-DEXPECT=${expect}" "-DREJECT=total: 0 differing|${GRADE_REJECT}" ${GRADE_EXTRA}
                    -P ${CMAKE_CURRENT_SOURCE_DIR}/grade/expect.cmake)
   set_tests_properties(grade.${name} PROPERTIES TIMEOUT 120)
@@ -58,6 +61,31 @@ grade_test(html pixel64 1 "picture (key | yours | difference): ${grade_out}/html
 set(GRADE_EXTRA -DCLEAN=${grade_out}/html-alone "-DFILES=${grade_out}/html-alone/marks-pictures/testShadow.png"
                 -DPAGE=${grade_out}/html-alone/marks.html "-DPAGE_EXPECT=<img src=\"marks-pictures/testShadow.png\"")
 grade_test(html-alone black 1 "marks 0/2" --only testShadow --html ${grade_out}/html-alone/marks.html)
+unset(GRADE_EXTRA)
+
+# Ways a renderer can go wrong that the grader must neither trust nor pass to the terminal.
+grade_test(huge-header huge_header 1 "wrote 30000x30000, the key is 600x600|marks 0/2" --only testShadow)
+# (no brackets in the expected texts: CMake's lists do not split inside them)
+grade_test(escapes escapes 1 "exited with status 3: \\x1b|mred\\x1b|m \\x07|marks 0/2" --only testShadow)
+
+# The command line: a scene folder with a trailing separator, options as --name=value and
+# --only with the file's name, each option at most once, one scene folder.
+set(GRADE_SCENES "${course_scene_dir}/")
+grade_test(trailing-separator one_level 0 "marks 2/2: the scene passes: PASS" --only=testShadow.txt --timeout=60)
+set(GRADE_SCENES "${course_scene_dir}")
+grade_test(option-twice one_level 2 "--only given twice" --only testShadow --only testAmbient)
+grade_test(two-folders one_level 2 "two scene folders" ${course_scene_dir})
+grade_test(only-naming-no-scene one_level 2 "no scene testNothing.txt in" --only testNothing)
+grade_test(html-onto-a-folder one_level 2 "is not a file, expected a new or replaceable page"
+           --only testShadow --html ${CMAKE_CURRENT_BINARY_DIR})
+# --html naming a scene being graded: refused before anything is written, on a copy.
+set(GRADE_EXTRA -DCLEAN=${grade_out}/refuse "-DCOPY=${course_scene_dir}/testShadow.txt|${grade_out}/refuse/scenes"
+                "-DCOPY2=${course_scene_dir}/../keys/keyShadow.ppm|${grade_out}/refuse/keys"
+                -DPAGE=${grade_out}/refuse/scenes/testShadow.txt "-DPAGE_EXPECT=OUTPUT")
+set(GRADE_SCENES "${grade_out}/refuse/scenes")
+grade_test(html-onto-a-scene one_level 2 "is a scene being graded, expected a new or replaceable page"
+           --html ${grade_out}/refuse/scenes/testShadow.txt)
+set(GRADE_SCENES "${course_scene_dir}")
 unset(GRADE_EXTRA)
 
 grade_test(help one_level 0 "usage: raytracer-grade [--raytracer EXE]|every channel is off by at most one level|ambiguous pixels" --help)

@@ -1,6 +1,8 @@
-// raytracer-grade stopped by SIGTERM or SIGINT while a render hangs (POSIX): the grader
-// ends by that signal, the render it started is killed and reaped, and the grader's scratch
-// folder is gone from the temporary directory.
+// raytracer-grade's processes and files (POSIX): stopped by SIGTERM or SIGINT while a
+// render hangs, or by its report's reader going away (SIGPIPE), the grader ends by that
+// signal, the render it started is killed and reaped, and the grader's scratch folder is
+// gone from the temporary directory; a report it cannot write or a temporary folder it
+// cannot use is exit status 3; what a render leaves running is stopped with it.
 #include <fcntl.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -70,7 +72,94 @@ void interrupt_a_hanging_render(int signal) {
     fs::remove_all(root);
 }
 
+// Whether the process has ended but is not yet reaped (Linux's /proc; elsewhere false).
+bool is_zombie(pid_t pid) {
+    std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+    std::string line;
+    std::getline(stat, line);
+    const std::size_t name_end = line.rfind(')');  // "pid (name) state ..."
+    return name_end != std::string::npos && name_end + 2 < line.size() && line[name_end + 2] == 'Z';
+}
+
+// A folder of this test's own, removed at the end.
+struct Root {
+    fs::path path =
+        fs::temp_directory_path() / ("raytracer-grade-test-" + std::to_string(std::random_device{}()));
+    Root() { fs::create_directories(path / "tmp"); }
+    ~Root() { fs::remove_all(path); }
+};
+
+// Runs the grader on testShadow with the renderer, its standard output `stdout_fd` and
+// TMPDIR `temporary`; returns its wait status.
+int grade_shadow(const char* renderer, int stdout_fd, const fs::path& temporary) {
+    const pid_t grader = fork();
+    if (grader == 0) {
+        setenv("TMPDIR", temporary.c_str(), 1);
+        dup2(stdout_fd, 1);
+        execl(RAYTRACER_GRADE, RAYTRACER_GRADE, "--raytracer", renderer, "--only", "testShadow",
+              COURSE_SCENES, static_cast<char*>(nullptr));
+        _exit(127);
+    }
+    int status = 0;
+    CHECK(wait_for_exit(grader, status));
+    return status;
+}
+
 }  // namespace
 
 TEST(sigterm_kills_the_render_and_removes_the_scratch_folder) { interrupt_a_hanging_render(SIGTERM); }
 TEST(sigint_kills_the_render_and_removes_the_scratch_folder) { interrupt_a_hanging_render(SIGINT); }
+
+// `raytracer-grade | head -c 10`: the reader is gone before the report is out.
+TEST(a_closed_report_pipe_ends_the_grading_and_removes_the_scratch_folder) {
+    const Root root;
+    int report[2];
+    CHECK_EQ(pipe(report), 0);
+    close(report[0]);
+    const int status = grade_shadow(FAKE_ONE_LEVEL, report[1], root.path / "tmp");
+    close(report[1]);
+    CHECK(WIFSIGNALED(status) && WTERMSIG(status) == SIGPIPE);
+    CHECK(fs::is_empty(root.path / "tmp"));
+}
+
+TEST(a_report_that_cannot_be_written_is_status_3) {
+    const Root root;
+    const int full = open("/dev/full", O_WRONLY);
+    CHECK(full >= 0);
+    const int status = grade_shadow(FAKE_ONE_LEVEL, full, root.path / "tmp");
+    close(full);
+    CHECK(WIFEXITED(status) && WEXITSTATUS(status) == 3);
+    CHECK(fs::is_empty(root.path / "tmp"));
+}
+
+TEST(a_temporary_folder_that_is_missing_is_status_3) {
+    const Root root;
+    const int null = open("/dev/null", O_WRONLY);
+    const int status = grade_shadow(FAKE_ONE_LEVEL, null, root.path / "missing");
+    close(null);
+    CHECK(WIFEXITED(status) && WEXITSTATUS(status) == 3);
+    CHECK(!fs::exists(root.path / "missing"));
+}
+
+// A renderer that exits but leaves a process of its group running: it is killed.
+TEST(what_a_render_leaves_running_is_stopped) {
+    const Root root;
+    const fs::path pid_file = root.path / "straggler.pid";
+    setenv("FAKE_RENDERER_PID_FILE", pid_file.c_str(), 1);
+    const int null = open("/dev/null", O_WRONLY);
+    const int status = grade_shadow(FAKE_STRAGGLER, null, root.path / "tmp");
+    close(null);
+    unsetenv("FAKE_RENDERER_PID_FILE");
+    CHECK(WIFEXITED(status) && WEXITSTATUS(status) == 0);  // the key itself: it passes
+    CHECK(wait_for_file(pid_file));
+    pid_t straggler = 0;
+    std::ifstream(pid_file) >> straggler;
+    CHECK(straggler > 0);
+    bool gone = false;  // killed, then reaped by init (or a zombie where init does not reap)
+    for (int i = 0; i < 500 && !gone && straggler > 0; ++i) {
+        gone = (kill(straggler, 0) == -1 && errno == ESRCH) || is_zombie(straggler);
+        if (!gone) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    CHECK(gone);
+    if (!gone && straggler > 0) kill(straggler, SIGKILL);
+}
