@@ -3,13 +3,14 @@
 #include "raytracer/ppm.h"
 
 #include <cctype>
+#include <cerrno>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <exception>
+#include <filesystem>
 #include <memory>
-#ifdef _WIN32
-#include <filesystem>  // u8path: a Unicode file name for _wfopen
-#endif
+#include <system_error>
 
 #include "raytracer/output_file.h"
 
@@ -63,12 +64,22 @@ namespace {
 
 using File = std::unique_ptr<std::FILE, int (*)(std::FILE*)>;
 
-File open_to_read(const std::string& file_name) {
+// The file open to read, or null with `error` saying why.
+File open_to_read(const std::string& file_name, std::string& error) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(std::filesystem::u8path(file_name), ec)) {
+        error = "'" + file_name + "' is a folder";
+        return File(nullptr, &std::fclose);
+    }
+    errno = 0;
 #ifdef _WIN32
     std::FILE* const file = _wfopen(std::filesystem::u8path(file_name).c_str(), L"rb");  // any Unicode name
 #else
     std::FILE* const file = std::fopen(file_name.c_str(), "rb");
 #endif
+    if (file == nullptr)
+        error =
+            "cannot open '" + file_name + "'" + (errno != 0 ? std::string(": ") + std::strerror(errno) : "");
     return File(file, &std::fclose);
 }
 
@@ -96,8 +107,13 @@ bool read_header(std::FILE* in, const std::string& file_name, int& width, int& h
     } catch (const std::exception&) {
         w = h = 0;
     }
-    if (fields[0] != "P6" || fields[3] != "255" || w <= 0 || h <= 0 || w * h > (1LL << 31)) {
+    if (fields[0] != "P6" || fields[3] != "255" || w <= 0 || h <= 0) {
         error = "'" + file_name + "' is not a binary PPM (P6) with maxval 255";
+        return false;
+    }
+    if (w > (1LL << 31) / h) {
+        error = "'" + file_name + "' is a P6 of " + fields[1] + "x" + fields[2] +
+                " pixels, more than the 2^31 read";
         return false;
     }
     width = static_cast<int>(w), height = static_cast<int>(h);
@@ -107,25 +123,23 @@ bool read_header(std::FILE* in, const std::string& file_name, int& width, int& h
 }  // namespace
 
 bool read_ppm_size(const std::string& file_name, int& width, int& height, std::string& error) {
-    const File in = open_to_read(file_name);
-    if (!in) {
-        error = "cannot open '" + file_name + "'";
-        return false;
-    }
-    return read_header(in.get(), file_name, width, height, error);
+    const File in = open_to_read(file_name, error);
+    return in && read_header(in.get(), file_name, width, height, error);
 }
 
-bool read_ppm(const std::string& file_name, Image& image, std::string& error) {
-    const File in = open_to_read(file_name);
-    if (!in) {
-        error = "cannot open '" + file_name + "'";
-        return false;
-    }
-    if (!read_header(in.get(), file_name, image.width, image.height, error)) return false;
+bool read_ppm(const std::string& file_name, Image& image, std::string& error, std::uint64_t* bytes_after) {
+    const File in = open_to_read(file_name, error);
+    if (!in || !read_header(in.get(), file_name, image.width, image.height, error)) return false;
     image.rgb.assign(static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) * 3, 0);
     if (std::fread(image.rgb.data(), 1, image.rgb.size(), in.get()) != image.rgb.size()) {
         error = "'" + file_name + "' is shorter than its header says";
         return false;
+    }
+    if (bytes_after != nullptr) {
+        *bytes_after = 0;
+        char rest[4096];
+        for (std::size_t got = 0; (got = std::fread(rest, 1, sizeof rest, in.get())) > 0;)
+            *bytes_after += got;
     }
     return true;
 }

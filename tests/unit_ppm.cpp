@@ -1,5 +1,6 @@
 // The PPM writers and reader: exact bytes, and no partial or clobbered files.
 #include <algorithm>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -189,6 +190,47 @@ TEST(read_ppm_refuses_what_is_not_a_p6_image) {
     }
     CHECK(!rt::read_ppm(dir.file("short.ppm"), image, error));
     CHECK(error.find("shorter") != std::string::npos);
+}
+
+// Each refusal says what is wrong: the system's reason, a folder, a size beyond 2^31
+// pixels (found from the header alone, before any memory is taken for the pixels).
+TEST(read_ppm_says_why_it_refuses) {
+    ScratchFolder dir;
+    rt::Image image;
+    std::string error;
+    CHECK(!rt::read_ppm(dir.file("none.ppm"), image, error));
+    CHECK(error.find("cannot open '") != std::string::npos && error.find("': ") != std::string::npos);
+    CHECK(!rt::read_ppm(dir.file(""), image, error));
+    CHECK(error.find("is a folder") != std::string::npos);
+    {
+        std::ofstream huge(dir.file("huge.ppm"), std::ios::binary);
+        huge << "P6\n70000 40000\n255\n";
+    }
+    CHECK(!rt::read_ppm(dir.file("huge.ppm"), image, error));
+    CHECK(error.find("70000x40000 pixels, more than the 2^31") != std::string::npos);
+    int width = 0, height = 0;
+    error.clear();
+    CHECK(rt::read_ppm_size(dir.file("huge.ppm"), width, height, error) == false);
+    {
+        std::ofstream big(dir.file("big.ppm"), std::ios::binary);
+        big << "P6\n30000 30000\n255\n";
+    }
+    CHECK(rt::read_ppm_size(dir.file("big.ppm"), width, height, error));
+    CHECK_EQ(width, 30000);
+    CHECK_EQ(height, 30000);
+}
+
+TEST(read_ppm_counts_the_bytes_after_the_pixels) {
+    ScratchFolder dir;
+    CHECK_EQ(rt::save_imageP6(2, 2, dir.file("a.ppm").c_str(), kPixels), std::string());
+    rt::Image image;
+    std::string error;
+    std::uint64_t after = 99;
+    CHECK(rt::read_ppm(dir.file("a.ppm"), image, error, &after));
+    CHECK_EQ(after, std::uint64_t{0});
+    std::ofstream(dir.file("a.ppm"), std::ios::binary | std::ios::app) << "junk";
+    CHECK(rt::read_ppm(dir.file("a.ppm"), image, error, &after));
+    CHECK_EQ(after, std::uint64_t{4});
 }
 
 TEST(compare_counts_pixels_and_the_largest_difference) {

@@ -38,7 +38,9 @@ std::string save_imageP3(int width, int height, const char* file_name, const uns
 
 // Reads a binary P6 file with maxval 255 (comments allowed in the header). Returns
 // false and says why in error when the file cannot be read or is not such a file.
-bool read_ppm(const std::string& file_name, Image& image, std::string& error);
+// Where bytes_after is given, it counts the bytes after the pixels (a P6 file has none).
+bool read_ppm(const std::string& file_name, Image& image, std::string& error,
+              std::uint64_t* bytes_after = nullptr);
 // Reads only the header of such a file: its width and height, without the memory its
 // pixels would take (a grader checks the size first).
 bool read_ppm_size(const std::string& file_name, int& width, int& height, std::string& error);

@@ -1,6 +1,7 @@
 #include "report.h"
 
 #include <cstdio>
+#include <string>
 
 #include "raytracer/shown.h"
 
@@ -11,6 +12,14 @@ using rt::plural;
 
 std::string rgb(const std::uint8_t (&c)[3]) {
     return std::to_string(c[0]) + " " + std::to_string(c[1]) + " " + std::to_string(c[2]);
+}
+
+// The name padded to `width` characters (UTF-8: a character's bytes after its first are
+// not counted), so that the table's columns line up.
+std::string padded(const std::string& name, std::size_t width) {
+    std::size_t characters = 0;
+    for (const char c : name) characters += (static_cast<unsigned char>(c) & 0xC0U) != 0x80U ? 1 : 0;
+    return name + std::string(characters < width ? width - characters : 0, ' ');
 }
 
 }  // namespace
@@ -33,10 +42,10 @@ void print_scene(const SceneResult& r, const std::string& picture) {
     const int marks = r.passed() ? kMarksPerScene : 0;
     const char* result = r.passed() ? "pass" : "FAIL";
     if (!r.problem.empty()) {
-        std::printf("%-20s %9s %11s %8.3f  %-6s %d/%d  %s\n", r.name.c_str(), "-", "-", r.seconds, result,
-                    marks, kMarksPerScene, r.problem.c_str());
+        std::printf("%s %9s %11s %8.3f  %-6s %d/%d  %s\n", padded(r.name, 20).c_str(), "-", "-", r.seconds,
+                    result, marks, kMarksPerScene, r.problem.c_str());
     } else {
-        std::printf("%-20s %9lld %11lld %8.3f  %-6s %d/%d\n", r.name.c_str(), r.judgement.differing,
+        std::printf("%s %9lld %11lld %8.3f  %-6s %d/%d\n", padded(r.name, 20).c_str(), r.judgement.differing,
                     r.judgement.unexplained, r.seconds, result, marks, kMarksPerScene);
     }
     for (const std::string& note : r.notes) std::printf("    note: %s\n", note.c_str());

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <system_error>
@@ -75,7 +76,7 @@ std::string files_in(const fs::path& folder) {
 // against the key's before its pixels are read, so that a header cannot make the grader
 // take gigabytes.
 std::string read_output(const fs::path& folder, const std::string& output_name, const rt::Image& key,
-                        rt::Image& image) {
+                        rt::Image& image, std::vector<std::string>& notes) {
     const fs::path output = folder / fs::u8path(output_name);
     std::error_code ec;
     if (fs::is_directory(output, ec)) return "wrote a folder named " + output_name + " (OUTPUT of the scene)";
@@ -90,7 +91,13 @@ std::string read_output(const fs::path& folder, const std::string& output_name, 
         (width != key.width || height != key.height))
         return "wrote " + std::to_string(width) + "x" + std::to_string(height) + ", the key is " +
                std::to_string(key.width) + "x" + std::to_string(key.height);
-    if (error.empty() && rt::read_ppm(output.u8string(), image, error)) return {};
+    std::uint64_t bytes_after = 0;
+    if (error.empty() && rt::read_ppm(output.u8string(), image, error, &bytes_after)) {
+        if (bytes_after > 0)
+            notes.push_back(rt::plural(static_cast<long long>(bytes_after), "byte", "bytes") +
+                            " after the pixels, where a P6 file ends");
+        return {};
+    }
     const std::size_t at = error.find(output.u8string());
     if (at != std::string::npos) error.replace(at, output.u8string().size(), output_name);
     return error;
@@ -139,7 +146,7 @@ SceneResult grade_scene(const fs::path& scene, const Options& options, const fs:
         result.ungradable = true;
         return result;
     }
-    if (!rt::read_ppm(key_file.string(), result.key, error)) {
+    if (!rt::read_ppm(key_file.u8string(), result.key, error)) {
         result.problem = "no usable key: " + error;
         result.ungradable = true;
         return result;
@@ -157,7 +164,7 @@ SceneResult grade_scene(const fs::path& scene, const Options& options, const fs:
     if (run.end != ChildOutcome::End::exited || run.code != 0)
         result.problem = describe_failed_run(run, options, command.stderr_file);
     else
-        result.problem = read_output(folder, output_name, result.key, result.got);
+        result.problem = read_output(folder, output_name, result.key, result.got, result.notes);
     if (result.problem.empty()) result.judgement = judge(result.key_name, result.key, result.got);
     if (run.end == ChildOutcome::End::exited) note_if_slow(result);
     remove_folder(folder);

@@ -11,6 +11,7 @@
 //   p3          the key as a text (P3) PPM                shifted     the key moved one pixel right
 //   huge_header only a header of 30000x30000 pixels        escapes     terminal escapes on stderr, status 3
 //   straggler   the key, leaving a process running (POSIX; its pid to FAKE_RENDERER_PID_FILE)
+//   trailing    the key with 5 bytes after its pixels
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
@@ -170,5 +171,6 @@ int main(int argc, char** argv) {
         write_p3(output, image);
     else
         write_p6(mode == "wrong_name" ? "a.ppm" : output, image);
+    if (mode == "trailing") std::ofstream(output, std::ios::binary | std::ios::app) << "junk\n";
     return 0;
 }

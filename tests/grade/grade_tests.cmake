@@ -2,7 +2,7 @@
 # The programs are built always (clang-tidy reads every source); the tests need the course
 # scenes and keys, as the golden tests do, and are left out where those are absent.
 set(fake_modes black pixel64 one_level hang segfault exit1 wrong_size wrong_name p3 shifted huge_header escapes
-               straggler)
+               straggler trailing)
 foreach(mode ${fake_modes})
   add_executable(fake_${mode} grade/fake_renderer.cpp)
   target_compile_definitions(fake_${mode} PRIVATE FAKE_MODE="${mode}")
@@ -64,6 +64,7 @@ grade_test(html-alone black 1 "marks 0/2" --only testShadow --html ${grade_out}/
 unset(GRADE_EXTRA)
 
 # Ways a renderer can go wrong that the grader must neither trust nor pass to the terminal.
+grade_test(trailing-bytes trailing 0 "note: 5 bytes after the pixels, where a P6 file ends|marks 2/2" --only testShadow)
 grade_test(huge-header huge_header 1 "wrote 30000x30000, the key is 600x600|marks 0/2" --only testShadow)
 # (no brackets in the expected texts: CMake's lists do not split inside them)
 grade_test(escapes escapes 1 "exited with status 3: \\x1b|mred\\x1b|m \\x07|marks 0/2" --only testShadow)
