@@ -3,6 +3,8 @@
 #include "raytracer/reference/brute_force.h"
 #include "raytracer/reference/ellipsoid.h"
 #include "raytracer/reference/shading.h"
+#include "raytracer/reference/spec_rules.h"
+#include "raytracer/reference/unit_sphere_roots.h"
 
 namespace {
 
@@ -144,6 +146,47 @@ void roots_near_a_bound_are_at_it() {
 TEST(a_root_within_a_few_ulps_of_a_bound_is_at_it) {
     roots_near_a_bound_are_at_it<double>();
     roots_near_a_bound_are_at_it<long double>();
+}
+
+// A ray whose origin lies on the surface to within the rounding of c = o'.o' - 1 has its
+// root there at t = 0 exactly (unit_sphere_roots.h), whatever the ray's length. Here the
+// mapped direction is 1e-12 long, as from a floor of radius 1e12 or through a window
+// 1e-9 wide, so c / q, 11 ulps over 1e-12, would be about 1e-3: past 0.0001, a hit.
+template <typename Real>
+void a_root_at_the_origin_is_zero() {
+    const Real ulp = rt::scene_epsilon<Real>();
+    const Real dx = Real(-0.8e-12), dy = Real(0.6e-12);  // into the sphere from (1, 0, 0)
+    for (const Real c : {Real(0), 11 * ulp, -11 * ulp}) {
+        const rt::UnitRoots<Real> r = rt::unit_sphere_roots(Real(1), Real(0), Real(0), c, dx, dy, Real(0));
+        CHECK(r.hit != 0);
+        CHECK(r.near == 0);
+        CHECK_NEAR(double(r.far / Real(1.6e12)), 1.0, 1e-12);  // the far side: -2 o'.d' / d'.d'
+    }
+    // Farther from the surface than c's rounding: the origin's own offset, as computed.
+    const rt::UnitRoots<Real> off =
+        rt::unit_sphere_roots(Real(1), Real(0), Real(0), 100 * ulp, dx, dy, Real(0));
+    CHECK(off.near > 0);
+}
+
+TEST(a_root_at_the_origin_is_zero_however_short_the_ray) {
+    a_root_at_the_origin_is_zero<double>();
+    a_root_at_the_origin_is_zero<long double>();
+}
+
+// The mirrored ray from a floor of radius 1e12 leaves it: the floor cannot be met again.
+TEST(a_mirrored_ray_does_not_meet_its_own_surface_again) {
+    const rt::BruteForce<double> tracer = scene_with({0, -1e12 - 1, -5}, {1e12, 1e12, 1e12});
+    int own_hits = 0;
+    for (int i = 1; i <= 50; ++i) {  // eye rays down onto the floor at several slants
+        const V direction{0.01 * i, -0.1 - 0.005 * i, -1};
+        const auto eye = tracer.closest(V{}, direction, 1.0);
+        CHECK(eye.found());
+        const V point = direction * eye.t;
+        const V normal = rt::normalize(point - V{0, -1e12 - 1, -5});  // a sphere's
+        const V mirrored = direction - normal * (2 * rt::dot(normal, direction));
+        own_hits += tracer.closest(point, mirrored, rt::kReflectedRayMinT).found() ? 1 : 0;
+    }
+    CHECK_EQ(own_hits, 0);
 }
 
 TEST(the_nearest_of_several_is_taken) {

@@ -48,12 +48,23 @@
 // (W. H. Press et al., Numerical Recipes, 3rd ed., section 5.6; D. Goldberg, "What Every
 // Computer Scientist Should Know About Floating-Point Arithmetic", ACM Computing Surveys
 // 23(1), 1991, section 1.4), both from one reciprocal r = 1/(a q): q/a = q (q r) and
-// c/q = c (a r) (three roundings each). c cancels when the origin lies on the surface
-// (shadow and reflected rays), benignly: its error is that of the origin itself, and it
-// only enters a root ~0 that the thresholds 0.001 and 0.0001 discard. Where c >= 1e30
+// c/q = c (a r) (three roundings each). Where c >= 1e30
 // (it may have overflowed) |b| >= 1e15 |e| >> sqrt(a - w.w), and the other root is
 // -(b - sign(b) sqrt(a - w.w)) / a, without cancellation. q = 0 (the origin on the
 // surface, the ray grazing it) gives roots 0, 0.
+//
+// The origin on the surface. A shadow or mirrored ray starts where the last ray met
+// the surface, so c = o'.o' - 1 is 0 but for its rounding, at most about 5.5 eps:
+// 4.5 eps of each square (2 + 2 from o'_i, eps/2 its own), eps/2 of each sum, and the
+// subtraction exact (Sterbenz) for o'.o' near 1. The root c/q is then that rounding
+// over |q| m, in t: eps times the ellipsoid's size over the ray's length. For a floor of
+// radius 1e12 under a ray a few units long, or a mirror room seen through a window 1e-9
+// wide (a ray 1e-9 long), that is 1e-4 or more, past the mirrored rays' 0.0001 and the
+// shadow rays' 0.001: the ray met its own surface again (double and long double
+// differed in half the pixels of scenes/hard/own_root_*.txt). Where |c| is within
+// about twice its rounding (12 eps), the origin is on the surface, as in exact
+// arithmetic, and its root is 0 exactly: the thresholds discard it. The other root,
+// q/a, does not use c.
 //
 // The point at t = 1. Where a decimal scene puts a root exactly at t = 1 (an eye ray's
 // pixel on the near plane lying on the surface, a light on a surface), the computed root
@@ -166,7 +177,9 @@ RT_ALWAYS_INLINE UnitRoots<Real> unit_roots(const UnitLine<Real>& line, Real c) 
     const Real q = -(line.b + signed_root);
     const Real r = Real(1) / (line.a * q);
     const Real q_r = q * r, a_r = line.a * r;  // 1/a and 1/q
-    const Real other = c < Real(1e30) ? c * a_r : -(line.b - signed_root) * q_r;
+    // The origin on the surface: its root is 0 exactly.
+    const Real on_surface = abs(c) <= Real(12) * scene_epsilon<Real>() ? Real(0) : Real(1);
+    const Real other = c < Real(1e30) ? (c * on_surface) * a_r : -(line.b - signed_root) * q_r;
     const Real t1 = (q * q_r) * line.inverse_largest, t2 = other * line.inverse_largest;
     Real near = t1 > t2 ? t2 : t1, far = t1 > t2 ? t1 : t2;
     near = q == 0 ? Real(0) : near;
