@@ -69,7 +69,7 @@ File open_to_read(const std::string& file_name, std::string& error) {
     std::error_code ec;
     if (std::filesystem::is_directory(std::filesystem::u8path(file_name), ec)) {
         error = "'" + file_name + "' is a folder";
-        return File(nullptr, &std::fclose);
+        return {nullptr, &std::fclose};
     }
     errno = 0;
 #ifdef _WIN32
@@ -80,7 +80,7 @@ File open_to_read(const std::string& file_name, std::string& error) {
     if (file == nullptr)
         error =
             "cannot open '" + file_name + "'" + (errno != 0 ? std::string(": ") + std::strerror(errno) : "");
-    return File(file, &std::fclose);
+    return {file, &std::fclose};
 }
 
 // Header: P6, width, height, maxval, separated by whitespace and # comments, then

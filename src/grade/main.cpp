@@ -148,7 +148,7 @@ fs::path make_scratch_folder(std::string& error) {
         return {};
     }
     std::mt19937_64 random(std::random_device{}());
-    const fs::path scratch = temporary / ("raytracer-grade-" + std::to_string(random()));
+    fs::path scratch = temporary / ("raytracer-grade-" + std::to_string(random()));
     if (!fs::create_directories(scratch, ec)) {
         error = "cannot make a scratch folder in '" + temporary.string() +
                 "': " + (ec ? ec.message() : std::string("it exists already"));

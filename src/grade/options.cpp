@@ -68,7 +68,7 @@ std::string parse_command_line(int argc, char** argv, Options& options) {
         } else if (name == "--only") {  // testShadow or testShadow.txt
             const bool has_txt = value.size() > 4 && value.compare(value.size() - 4, 4, ".txt") == 0;
             options.only = has_txt ? value.substr(0, value.size() - 4) : value;
-        } else if (const std::string error = set_timeout(value, options); !error.empty()) {
+        } else if (std::string error = set_timeout(value, options); !error.empty()) {
             return error;
         }
     }

@@ -151,10 +151,19 @@ int main(int argc, char** argv) {
         return 0;
     }
 #ifndef _WIN32
-    if (mode == "straggler" && fork() == 0) {
-        if (const char* pid_file = std::getenv("FAKE_RENDERER_PID_FILE"))
-            std::ofstream(pid_file) << getpid() << "\n";
-        for (;;) std::this_thread::sleep_for(std::chrono::seconds(1));
+    if (mode == "straggler") {
+        const char* pid_file = std::getenv("FAKE_RENDERER_PID_FILE");
+        const std::string written = pid_file != nullptr ? std::string(pid_file) + ".written" : "";
+        if (fork() == 0) {
+            if (pid_file != nullptr) {
+                std::ofstream(written) << getpid() << "\n";
+                (void)std::rename(written.c_str(), pid_file);  // whole when it appears
+            }
+            for (;;) std::this_thread::sleep_for(std::chrono::seconds(1));
+        }
+        // Not done before the straggler is known: the grader kills it when this ends.
+        for (int i = 0; pid_file != nullptr && i < 2000 && !std::ifstream(pid_file); ++i)
+            std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }
 #endif
     Image image = read_key(argv[1]);
