@@ -156,14 +156,14 @@ RT_ALWAYS_INLINE UnitLine<Real> unit_line(Real ox, Real oy, Real oz, Real dx, Re
     // The point at t = 1.
     const Real px = ox + dx, py = oy + dy, pz = oz + dz;
     const Real gx = abs(ox) + ax, gy = abs(oy) + ay, gz = abs(oz) + az;
-    // |p|^2 - 1 as (q - 1)(q + 1) + the other two squares, q the largest |p_i|: q - 1 is
+    // |p|^2 - 1 as (k - 1)(k + 1) + the other two squares, k the largest |p_i|: k - 1 is
     // exact (Sterbenz) where |p| is near 1, so nothing is lost to the spacing of numbers
     // near 1 (|p|^2 rounded first is a multiple of eps there, the allowance 34 eps).
-    const Real qx = abs(px), qy = abs(py), qz = abs(pz), sx = px * px, sy = py * py, sz = pz * pz;
-    const bool x_largest = qx >= qy && qx >= qz, y_largest = qy > qx && qy >= qz;
-    const Real q = x_largest ? qx : (y_largest ? qy : qz);
+    const Real kx = abs(px), ky = abs(py), kz = abs(pz), sx = px * px, sy = py * py, sz = pz * pz;
+    const bool x_largest = kx >= ky && kx >= kz, y_largest = ky > kx && ky >= kz;
+    const Real k = x_largest ? kx : (y_largest ? ky : kz);
     const Real others = x_largest ? sy + sz : (y_largest ? sx + sz : sx + sy);
-    const Real surface = (q - Real(1)) * (q + Real(1)) + others;
+    const Real surface = (k - Real(1)) * (k + Real(1)) + others;
     const Real allowance =
         scene_epsilon<Real>() * (Real(10) * (abs(px) * gx + abs(py) * gy + abs(pz) * gz) + Real(4));
     const Real on = abs(surface) <= allowance ? (allowance < Real(0.5) ? Real(1) : Real(0)) : Real(0);
