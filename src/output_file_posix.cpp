@@ -43,8 +43,8 @@ void PendingFile::open_replacement() {
             return;
         }
         replaces_ = true;
-        keep_mode_ =
-            existing.st_mode & 0777;  // not set-user-ID, set-group-ID or sticky: an image is no program
+        // Not set-user-ID, set-group-ID or sticky: an image is no program.
+        keep_mode_ = existing.st_mode & 0777;
     }
     const NativePath folder = folder_of(target_).native();
     if (!open_unnamed(folder)) open_named(folder);

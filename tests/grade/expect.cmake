@@ -1,9 +1,9 @@
 # Runs raytracer-grade and checks its exit status and what it printed (stdout and stderr
 # together), and optionally a file it wrote. Lists are separated by '|'.
 #   cmake -DGRADER=exe "-DARGS=a|b" -DSTATUS=n "-DEXPECT=text|text" ["-DREJECT=text|..."]
-#         [-DEMULATOR=wine] [-DCLEAN=folder] ["-DCOPY=file|folder"] ["-DCOPY2=file|folder"]
+#         [-DEMULATOR=wine] [-DCLEAN=folder] ["-DCOPY=file|folder|file|folder..."]
 #         ["-DFILES=file|..."] [-DPAGE=file "-DPAGE_EXPECT=text|..."] -P expect.cmake
-# CLEAN is removed (and made empty) first, then COPY and COPY2 copy a file into a folder;
+# CLEAN is removed (and made empty) first, then COPY's pairs copy each file into its folder;
 # FILES must exist afterwards; PAGE must contain each PAGE_EXPECT.
 foreach(variable GRADER STATUS EXPECT)
   if(NOT DEFINED ${variable})
@@ -17,14 +17,11 @@ if(CLEAN)
   file(REMOVE_RECURSE "${CLEAN}")
   file(MAKE_DIRECTORY "${CLEAN}")
 endif()
-foreach(copy COPY COPY2)  # "file|folder": the file copied into the folder first
-  if(${copy})
-    string(REPLACE "|" ";" pair "${${copy}}")
-    list(GET pair 0 from)
-    list(GET pair 1 to)
-    file(COPY "${from}" DESTINATION "${to}")
-  endif()
-endforeach()
+string(REPLACE "|" ";" copies "${COPY}")
+while(copies)
+  list(POP_FRONT copies from to)
+  file(COPY "${from}" DESTINATION "${to}")
+endwhile()
 
 execute_process(COMMAND ${EMULATOR} "${GRADER}" ${ARGS} RESULT_VARIABLE status OUTPUT_VARIABLE out
                 ERROR_VARIABLE err)

@@ -80,8 +80,7 @@ grade_test(only-naming-no-scene one_level 2 "no scene testNothing.txt in" --only
 grade_test(html-onto-a-folder one_level 2 "is not a file, expected a new or replaceable page"
            --only testShadow --html ${CMAKE_CURRENT_BINARY_DIR})
 # --html naming a scene being graded: refused before anything is written, on a copy.
-set(GRADE_EXTRA -DCLEAN=${grade_out}/refuse "-DCOPY=${course_scene_dir}/testShadow.txt|${grade_out}/refuse/scenes"
-                "-DCOPY2=${course_scene_dir}/../keys/keyShadow.ppm|${grade_out}/refuse/keys"
+set(GRADE_EXTRA -DCLEAN=${grade_out}/refuse "-DCOPY=${course_scene_dir}/testShadow.txt|${grade_out}/refuse/scenes|${course_scene_dir}/../keys/keyShadow.ppm|${grade_out}/refuse/keys"
                 -DPAGE=${grade_out}/refuse/scenes/testShadow.txt "-DPAGE_EXPECT=OUTPUT")
 set(GRADE_SCENES "${grade_out}/refuse/scenes")
 grade_test(html-onto-a-scene one_level 2 "is a scene being graded, expected a new or replaceable page"

@@ -38,12 +38,17 @@ bool wait_for_exit(pid_t pid, int& status) {
     return false;
 }
 
+// A folder of this test's own, removed at the end.
+struct Root {
+    fs::path path =
+        fs::temp_directory_path() / ("raytracer-grade-test-" + std::to_string(std::random_device{}()));
+    Root() { fs::create_directories(path / "tmp"); }
+    ~Root() { fs::remove_all(path); }
+};
+
 void interrupt_a_hanging_render(int signal) {
-    std::random_device random;
-    const fs::path root =
-        fs::temp_directory_path() / ("raytracer-grade-interrupt-" + std::to_string(random()));
-    const fs::path temporary = root / "tmp", pid_file = root / "render.pid";
-    fs::create_directories(temporary);
+    const Root root;
+    const fs::path temporary = root.path / "tmp", pid_file = root.path / "render.pid";
 
     const pid_t grader = fork();
     if (grader == 0) {
@@ -69,7 +74,6 @@ void interrupt_a_hanging_render(int signal) {
     CHECK(render > 0 && kill(render, 0) == -1 && errno == ESRCH);  // killed and reaped
     CHECK(fs::is_empty(temporary));
     if (render > 0) kill(render, SIGKILL);
-    fs::remove_all(root);
 }
 
 // Whether the process has ended but is not yet reaped (Linux's /proc; elsewhere false).
@@ -80,14 +84,6 @@ bool is_zombie(pid_t pid) {
     const std::size_t name_end = line.rfind(')');  // "pid (name) state ..."
     return name_end != std::string::npos && name_end + 2 < line.size() && line[name_end + 2] == 'Z';
 }
-
-// A folder of this test's own, removed at the end.
-struct Root {
-    fs::path path =
-        fs::temp_directory_path() / ("raytracer-grade-test-" + std::to_string(std::random_device{}()));
-    Root() { fs::create_directories(path / "tmp"); }
-    ~Root() { fs::remove_all(path); }
-};
 
 // Runs the grader on testShadow with the renderer, its standard output `stdout_fd` and
 // TMPDIR `temporary`; returns its wait status.

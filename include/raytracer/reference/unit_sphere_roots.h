@@ -178,8 +178,8 @@ RT_ALWAYS_INLINE UnitRoots<Real> unit_roots(const UnitLine<Real>& line, Real c) 
     const Real r = Real(1) / (line.a * q);
     const Real q_r = q * r, a_r = line.a * r;  // 1/a and 1/q
     // The origin on the surface: its root is 0 exactly.
-    const Real on_surface = abs(c) <= Real(12) * scene_epsilon<Real>() ? Real(0) : Real(1);
-    const Real other = c < Real(1e30) ? (c * on_surface) * a_r : -(line.b - signed_root) * q_r;
+    const Real origin_c = abs(c) <= Real(12) * scene_epsilon<Real>() ? Real(0) : c;
+    const Real other = c < Real(1e30) ? origin_c * a_r : -(line.b - signed_root) * q_r;
     const Real t1 = (q * q_r) * line.inverse_largest, t2 = other * line.inverse_largest;
     Real near = t1 > t2 ? t2 : t1, far = t1 > t2 ? t1 : t2;
     near = q == 0 ? Real(0) : near;
