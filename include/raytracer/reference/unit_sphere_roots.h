@@ -73,11 +73,13 @@
 // rounding, and differently in double and long double. Whether the point itself lies on
 // the surface is well conditioned: p = o' + d' with |dp_i| <= 2.5 eps g_i,
 // g_i = |o'_i| + |d'_i| (2 eps from o' and d', eps/2 the sum's rounding), so |p|^2 - 1
-// is off by at most 5 eps sum |p_i| g_i + 2 eps (1.5 eps |p|^2 for the squares' and
-// sums' roundings, at |p| ~ 1); within twice that of zero, p is on the surface, the ray
-// meets it (a hit) and the root nearer t = 1 is 1 exactly: thresholds at t = 1 (the near plane,
-// the light) then decide as in exact arithmetic, alike in every precision. Where that
-// allowance is not small (|p| near overflow) nothing is set.
+// is off by at most 5 eps sum |p_i| g_i + 2 eps (its own evaluation: about 2.5 eps of
+// the smaller squares, computed as below); within twice that of zero, p is on the
+// surface, the ray meets it (a hit) and the root nearer t = 1 is 1 exactly: thresholds at
+// t = 1 (the near plane, the light) then decide as in exact arithmetic, alike in every
+// precision where p is exact (a decimal scene's round numbers) and otherwise but within
+// p's own rounding of the allowance. Where that allowance is not small (|p| near
+// overflow) nothing is set.
 #pragma once
 
 #include <cmath>
@@ -154,7 +156,14 @@ RT_ALWAYS_INLINE UnitLine<Real> unit_line(Real ox, Real oy, Real oz, Real dx, Re
     // The point at t = 1.
     const Real px = ox + dx, py = oy + dy, pz = oz + dz;
     const Real gx = abs(ox) + ax, gy = abs(oy) + ay, gz = abs(oz) + az;
-    const Real surface = (px * px + py * py + pz * pz) - Real(1);
+    // |p|^2 - 1 as (k - 1)(k + 1) + the other two squares, k the largest |p_i|: k - 1 is
+    // exact (Sterbenz) where |p| is near 1, so nothing is lost to the spacing of numbers
+    // near 1 (|p|^2 rounded first is a multiple of eps there, the allowance 34 eps).
+    const Real kx = abs(px), ky = abs(py), kz = abs(pz), sx = px * px, sy = py * py, sz = pz * pz;
+    const bool x_largest = kx >= ky && kx >= kz, y_largest = ky > kx && ky >= kz;
+    const Real k = x_largest ? kx : (y_largest ? ky : kz);
+    const Real others = x_largest ? sy + sz : (y_largest ? sx + sz : sx + sy);
+    const Real surface = (k - Real(1)) * (k + Real(1)) + others;
     const Real allowance =
         scene_epsilon<Real>() * (Real(10) * (abs(px) * gx + abs(py) * gy + abs(pz) * gz) + Real(4));
     const Real on = abs(surface) <= allowance ? (allowance < Real(0.5) ? Real(1) : Real(0)) : Real(0);
