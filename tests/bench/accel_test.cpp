@@ -632,8 +632,10 @@ int adversarial_rays_differing(unsigned seed, int rays) {
 
 // The generator above finds 800 differences in 400k rays where a box holding the origin
 // may be culled (the tangent roots), and some where kCullingGap is 1e-9 or the guard is
-// off (float's rounding at 50 smallest scales), or where gap_per_reach() is 1e-15 in
-// double (a reach of 1e12 smallest scales) or less; none at 1e-14 or the shipped 1e-12.
+// off (float's rounding at 50 smallest scales), or where each box is a hundredth of its
+// gap smaller than its ellipsoid; none where gap_per_reach() is as small as 1e-16 in
+// double (a reach of 1e13 smallest scales, where the roots' bound is 240 times the gap:
+// the rounding these rays meet is far below the bound, which sets the reach).
 TEST(bvh_adversarial_rays_match_brute_force) {
     for (unsigned seed = 1; seed <= 150; ++seed) {
         CHECK_EQ(adversarial_rays_differing<float>(seed, 1500), 0);
@@ -641,6 +643,77 @@ TEST(bvh_adversarial_rays_match_brute_force) {
             CHECK_EQ(adversarial_rays_differing<double>(seed, 1000), 0);
             CHECK_EQ(adversarial_rays_differing<long double>(seed, 1000), 0);
         }
+    }
+}
+
+namespace {
+
+// Rays where a box's margin is thinnest: along the plane of a box's face, from up to its
+// guard, passing the axis's tip from one gap inside the surface to two outside, and head
+// on at the tip, ending within two gaps of the surface. One ellipsoid (a third of them
+// thin discs) with a twin beside it, so that each is a child of the root, culled by its
+// own box. Boxes a hundredth of their gap smaller than their ellipsoids fail 158 of its
+// 330 checks; gap_per_reach() as small as 1e-16, none. Returns the number of answers
+// that differ from BruteForce's.
+template <typename Real>
+int face_plane_rays_differing(unsigned seed, int rays) {
+    using V = rt::Vec3<Real>;
+    using C = rt::AtLeastDouble<Real>;
+    std::mt19937 g(seed);
+    rt::SphereSpec target;
+    const double size = std::pow(10.0, uniform(g, -2, 1));
+    target.centre = {uniform(g, -5, 5), uniform(g, -5, 5), uniform(g, -15, 2)};
+    target.scale = {size * uniform(g, 0.2, 1), size * uniform(g, 0.2, 1), size * uniform(g, 0.2, 1)};
+    if (g() % 3 == 0) target.scale.y = std::pow(10.0, uniform(g, -13, -6));
+    rt::SphereSpec twin = target;
+    twin.centre.x += 4 * std::max({target.scale.x, target.scale.y, target.scale.z});
+    const std::vector<rt::Ellipsoid<Real>> all = {rt::make_ellipsoid<Real>(target),
+                                                  rt::make_ellipsoid<Real>(twin)};
+    const rt::BruteForce<Real> plain(all);
+    const rt::Bvh<Real> tree(all);
+    rt::SceneExtent<C> extent;  // the boxes' gaps and guards as the tree makes them
+    for (const rt::Ellipsoid<Real>& e : all) extent.add(e);
+    const rt::BoxGaps<Real> gaps(extent.extent());
+    const rt::Ellipsoid<Real>& e = all[0];
+    C s[3];
+    rt::abs_scales(e, s);
+    const C smallest = rt::smallest_of(s);
+    int differing = 0;
+    for (int k = 0; k < rays; ++k) {
+        const unsigned axis = g() % 3;
+        const V tip{Real(axis == 0), Real(axis == 1), Real(axis == 2)};
+        const V w = normalize(
+            cross_product(tip, V{Real(uniform(g, -1, 1)), Real(uniform(g, -1, 1)), Real(uniform(g, -1, 1))}));
+        const V across = w * e.scale;  // w in the world
+        const Real width = std::max({std::abs(across.x), std::abs(across.y), std::abs(across.z)});
+        const Real length = Real(gaps.guard(smallest) * uniform(g, 0.3, 0.95)) / width;
+        const Real lift = Real(1 + gaps.gap(smallest) * uniform(g, -1, 2));
+        V origin = e.centre + (tip * lift + w * length) * e.scale;
+        V direction = -across * (length * Real(uniform(g, 0.99, 2.5)));
+        if (g() % 2 == 0) {  // head on at the tip, ending within 2 gaps of the surface
+            const Real sign = g() % 2 != 0 ? 1 : -1;
+            const Real scale = std::abs(axis == 0 ? e.scale.x : axis == 1 ? e.scale.y : e.scale.z);
+            const Real away = Real(gaps.guard(smallest) * uniform(g, 0.3, 0.95));
+            const Real end = Real(1 + gaps.gap(smallest) * uniform(g, -0.5, 2));
+            origin = e.centre + tip * (sign * (scale * end + away));
+            direction = tip * (-sign * away);
+        }
+        for (const double min_t : {rt::kEyeRayMinT, rt::kReflectedRayMinT})
+            differing +=
+                !same_hit(tree.closest(origin, direction, min_t), plain.closest(origin, direction, min_t));
+        std::uint32_t plain_hint = rt::kNoEllipsoid, tree_hint = rt::kNoEllipsoid;
+        differing +=
+            tree.occluded(origin, direction, tree_hint) != plain.occluded(origin, direction, plain_hint);
+    }
+    return differing;
+}
+
+}  // namespace
+
+TEST(bvh_face_plane_rays_match_brute_force) {
+    for (unsigned seed = 1; seed <= 300; ++seed) {
+        CHECK_EQ(face_plane_rays_differing<double>(seed, 300), 0);
+        if (seed % 10 == 0) CHECK_EQ(face_plane_rays_differing<long double>(seed, 300), 0);
     }
 }
 
@@ -692,14 +765,14 @@ TEST(bvh_float_directions_below_the_normal_range) {
     CHECK_EQ(differing, 0);
 }
 
-// Discs 1e-9 thick seen from 10 to 30 away (|o'| up to 3e10, past the reach of a gap of
+// Discs 1e-11 thick seen from 10 to 30 away (|o'| up to 3e12, past the reach of a gap of
 // kCullingGap): their boxes are grown so that they cull rays from anywhere in the scene
 // (BoxGaps). The images stay the reference's, in double and long double.
 TEST(thin_discs_far_away_are_culled_and_render_as_the_reference) {
     const rt::BoxGaps<double> gaps(2 * 40.0);
     CHECK(gaps.gap(0.3) == rt::kCullingGap);
-    CHECK(gaps.gap(1e-9) > rt::kCullingGap && gaps.gap(1e-9) < 0.2);
-    CHECK(gaps.guard(1e-9) > 79.9 && gaps.guard(0.3) > 79.9);  // the extent, within rounding
+    CHECK(gaps.gap(1e-11) > rt::kCullingGap && gaps.gap(1e-11) < 0.9);
+    CHECK(gaps.guard(1e-11) > 79.9 && gaps.guard(0.3) > 79.9);  // the extent, within rounding
     CHECK(gaps.gap(1e-13) == rt::kLargestCullingGap && gaps.guard(1e-13) < 80);
     rt::Scene s = stress::random_scene(4);
     s.columns = 40, s.rows = 40;
@@ -709,7 +782,7 @@ TEST(thin_discs_far_away_are_culled_and_render_as_the_reference) {
         rt::SphereSpec& e = s.spheres[i];
         e.centre = {uniform(g, -8, 8), uniform(g, -8, 8), uniform(g, -30, -10)};
         e.scale = {0.3, 0.3, 0.3};
-        (i % 3 == 0 ? e.scale.x : i % 3 == 1 ? e.scale.y : e.scale.z) = 1e-9;
+        (i % 3 == 0 ? e.scale.x : i % 3 == 1 ? e.scale.y : e.scale.z) = 1e-11;
         e.kd = 0.6, e.ks = 0.3, e.kr = i % 4 == 0 ? 0.5 : 0;
     }
     // The tree's boxes are the grown ones: a point 5% beyond the rim of a disc set apart

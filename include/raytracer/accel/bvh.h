@@ -15,7 +15,7 @@
 // its point lies deep inside the box, and the slab test's own rounding (a few ulps of the box's distance)
 // cannot move it out. A ray that runs in a slab's plane, where the slab test's 0 * inf is NaN, cannot reach a
 // box's inside at all. Both hold only while the ray's origin is within the reach its box's gap holds
-// (BoxGaps, slab_rays.h: |o'| <= 1e9 in double for the gap of 1e-3, the roots' rounding 2e-5 there; an
+// (BoxGaps, slab_rays.h: |o'| <= 2e10 in double for the gap of 1e-3, the roots' rounding 5e-4 there; an
 // ellipsoid thin beside its scene is grown more, so that its box culls rays from anywhere in it): a child is
 // culled only for a ray from within the guard distance of every ellipsoid under it, else visited unculled. A
 // child whose box holds the ray's origin is never culled either: from a point on the surface (|o'| = 1 within

@@ -156,12 +156,13 @@ C smallest_of(const C (&s)[3]) {
 
 // How far the tree grows an ellipsoid's box, and from how far the box may cull a ray
 // (exact_culling.h): grown by kCullingGap of each scale, it culls rays from within
-// 1e9 smallest scales (double), which covers nearly every scene. An ellipsoid thin or
-// small beside its scene (a disc 1e-9 thick seen from 30 away: |o'| = 3e10) is grown by
-// the larger gap that culling from anywhere in the scene needs, up to
+// 2e10 smallest scales (double), which covers nearly every scene. An ellipsoid thin or
+// small beside its scene (a disc 1e-11 thick seen from 30 away: |o'| = 3e12) is grown
+// by the larger gap that culling from anywhere in the scene needs, up to
 // kLargestCullingGap; past that, rays from beyond its reach try it unculled. (Only
-// ellipsoids below 2e-12 of the scene's extent take the largest gap: in a scene with
-// one ellipsoid some 1e12 times larger than all the others, every other box is doubled.)
+// ellipsoids below 1e-13 of the scene's extent take the largest gap, under a thousand
+// ulps of its coordinates: in a scene with one ellipsoid some 1e13 times larger than all
+// the others, every other box is doubled.)
 template <typename Real>
 class BoxGaps {
 public:
