@@ -2,10 +2,10 @@
 //
 //   make_scene flake LEVEL FILE [COLUMNS ROWS]    a sphereflake, levels 1-6
 //   make_scene random N FILE [COLUMNS ROWS]       N random ellipsoids (seed 1)
+//   make_scene discs E FILE [COLUMNS ROWS]        2,000 of them as discs 10^-E thick
 // RES is 400 400 unless given; OUTPUT is FILE's name with .ppm for .txt.
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <exception>
 #include <filesystem>
 #include <string>
@@ -15,20 +15,23 @@
 namespace {
 
 int make_scene(int argc, char** argv) {
-    if ((argc != 4 && argc != 6) ||
-        (std::strcmp(argv[1], "flake") != 0 && std::strcmp(argv[1], "random") != 0)) {
+    const std::string kind = argc == 4 || argc == 6 ? argv[1] : "";
+    if (kind != "flake" && kind != "random" && kind != "discs") {
         std::fprintf(stderr,
-                     "usage: make_scene flake LEVEL FILE [COLUMNS ROWS] | make_scene random N FILE [...]\n");
+                     "usage: make_scene flake LEVEL FILE [COLUMNS ROWS] | make_scene random N FILE [...] | "
+                     "make_scene discs E FILE [...]\n");
         return 2;
     }
     const long n = std::strtol(argv[2], nullptr, 10);
-    const bool flake = std::strcmp(argv[1], "flake") == 0;
-    if (flake ? (n < 1 || n > 6) : (n < 1 || n > 10000000)) {
+    const long most = kind == "flake" ? 6 : kind == "discs" ? 300 : 10000000;
+    if (n < (kind == "discs" ? 0 : 1) || n > most) {
         std::fprintf(stderr, "make_scene: %s is out of range\n", argv[2]);
         return 2;
     }
-    rt::Scene scene =
-        flake ? scale::sphereflake(static_cast<int>(n)) : scale::random_ellipsoids(static_cast<int>(n));
+    const int k = static_cast<int>(n);
+    rt::Scene scene = kind == "flake"    ? scale::sphereflake(k)
+                      : kind == "random" ? scale::random_ellipsoids(k)
+                                         : scale::random_discs(k);
     if (argc == 6) {
         scene.columns = std::atoi(argv[4]), scene.rows = std::atoi(argv[5]);
         if (scene.columns < 1 || scene.rows < 1) {

@@ -110,6 +110,16 @@ inline rt::Scene random_ellipsoids(int n, unsigned seed = 1) {
     return s;
 }
 
+// random_ellipsoids(2000) with every ellipsoid flattened to a disc 10^-exponent thick
+// (its y scale): thin beside the scene, so that the tree's boxes must be grown to cull
+// rays from across it (BoxGaps, slab_rays.h).
+inline rt::Scene random_discs(int exponent) {
+    rt::Scene s = random_ellipsoids(2000);
+    s.output = "discs" + std::to_string(exponent) + ".ppm";
+    for (rt::SphereSpec& e : s.spheres) e.scale.y = std::pow(10.0, -exponent);
+    return s;
+}
+
 // The scene as a file the parser reads back to the same numbers (%.17g round-trips).
 inline std::string scene_text(const rt::Scene& s) {
     std::string text;
