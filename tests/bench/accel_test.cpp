@@ -511,7 +511,7 @@ std::vector<rt::SphereSpec> adversarial_ellipsoids(std::mt19937& g, double world
 // occluded(), with and without a hint): from the camera at an ellipsoid's rim (through
 // the near plane); from a surface point along its tangent plane, off it by 0 to 1e-4
 // (the tangency allowance); from 49 to 1e14 smallest scales away grazing the rim (the
-// guard's boundary, 5e8 in double and 50 in float, max-norm; farther for the thin and
+// guard's boundary, 1.02e10 in double and 50 in float, max-norm; farther for the thin and
 // tiny ones, whose boxes are grown: BoxGaps); shadow and reflected rays
 // from an eye ray's hit point; rays head on from up to the guard distance, or from
 // across the scene, ending within 0.05 smallest scales of the surface (before or past
@@ -570,8 +570,9 @@ int adversarial_rays_differing(unsigned seed, int rays) {
                 break;
             }
             case 3: {
-                const double away[] = {49,    50,    51,  1e2,  1e5,  1e7,  4.9e8, 5e8,
-                                       5.1e8, 8.6e8, 1e9, 1e10, 1e11, 1e13, 1e14};
+                const double guard = rt::kCullingGap / rt::gap_per_reach<double>() / 2;  // max-norm
+                const double away[] = {49,    50,           51,           1e2,  1e5,  1e7,  1e9, 0.98 * guard,
+                                       guard, 1.02 * guard, 1.74 * guard, 1e11, 1e12, 1e13, 1e14};
                 const Real smallest = smallest_scale(e);
                 const V origin = e.centre + u * (smallest * Real(away[g() % 15]) * r(0.99, 1.01));
                 const V side = normalize(cross_product(u, V{0, 1, 0}));

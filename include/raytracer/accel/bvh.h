@@ -23,8 +23,9 @@
 // discriminant to zero (the tangency allowance) its second root c/q is c / |o'.d'|, anywhere along the ray,
 // far outside the box (a shadow ray towards a light 2000 radii away leaves the box before t = 0.001 and is
 // still "blocked" at t ~ 0.5). From outside the box, |o'.d'| / |d'| >= sqrt(1.001^2 - 1) ~ 0.045 bounds that
-// root's distance from the tangent point to ~110 eps (1 + |o'|), deep inside the gap. The ellipsoids of a
-// leaf are always tried with the exact intersect(). Ties between equal roots go to the lower index
+// root's distance from the tangent point to ~110 eps (1 + |o'|), inside the gap (half of it at the farthest
+// reach, exact_culling.h; a box grown by more than kCullingGap has sqrt((1 + gap)^2 - 1) there, and a smaller
+// bound). The ellipsoids of a leaf are always tried with the exact intersect(). Ties between equal roots go to the lower index
 // (NearestHit::replaced_by()).
 //
 // Memory: the tree and the ellipsoids in leaf order; a query uses a fixed stack, the same for any scene.

@@ -41,7 +41,7 @@ constexpr double culling_reach() {
 // long double, whose rounding is smaller), so a box grown by kCullingGap culls rays from
 // within 2e10 smallest scales, and one grown more from farther (BoxGaps, slab_rays.h);
 // float keeps the flat sweep's reach. (speed.accel's adversarial rays find no difference
-// even at 1e-16, where the bound is 240 times the gap at the guard: the rounding seen is
+// even at 1e-16, where the bound is 240 times the gap at the reach: the rounding seen is
 // far below it, and the bound, not what a test happened to find, sets the reach.)
 template <typename Real>
 constexpr double gap_per_reach() {
