@@ -25,8 +25,8 @@
 // still "blocked" at t ~ 0.5). From outside the box, |o'.d'| / |d'| >= sqrt(1.001^2 - 1) ~ 0.045 bounds that
 // root's distance from the tangent point to ~110 eps (1 + |o'|), inside the gap (half of it at the farthest
 // reach, exact_culling.h; a box grown by more than kCullingGap has sqrt((1 + gap)^2 - 1) there, and a smaller
-// bound). The ellipsoids of a leaf are always tried with the exact intersect(). Ties between equal roots go to the lower index
-// (NearestHit::replaced_by()).
+// bound). The ellipsoids of a leaf are always tried with the exact intersect(). Ties between equal roots go
+// to the lower index (NearestHit::replaced_by()).
 //
 // Memory: the tree and the ellipsoids in leaf order; a query uses a fixed stack, the same for any scene.
 #pragma once
