@@ -570,7 +570,7 @@ int adversarial_rays_differing(unsigned seed, int rays) {
                 break;
             }
             case 3: {
-                const double guard = rt::kCullingGap / rt::gap_per_reach<double>() / 2;  // max-norm
+                const double guard = rt::BoxGaps<double>().guard(1);  // kCullingGap's, max-norm
                 const double away[] = {49,    50,           51,           1e2,  1e5,  1e7,  1e9, 0.98 * guard,
                                        guard, 1.02 * guard, 1.74 * guard, 1e11, 1e12, 1e13, 1e14};
                 const Real smallest = smallest_scale(e);
@@ -693,7 +693,7 @@ int face_plane_rays_differing(unsigned seed, int rays) {
         V direction = -across * (length * Real(uniform(g, 0.99, 2.5)));
         if (g() % 2 == 0) {  // head on at the tip, ending within 2 gaps of the surface
             const Real sign = g() % 2 != 0 ? 1 : -1;
-            const Real scale = std::abs(axis == 0 ? e.scale.x : axis == 1 ? e.scale.y : e.scale.z);
+            const Real scale = Real(s[axis]);
             const Real away = Real(gaps.guard(smallest) * uniform(g, 0.3, 0.95));
             const Real end = Real(1 + gaps.gap(smallest) * uniform(g, -0.5, 2));
             origin = e.centre + tip * (sign * (scale * end + away));

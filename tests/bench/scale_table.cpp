@@ -162,10 +162,11 @@ void scale_table(const fs::path& raytracer, const fs::path& make_scene, const fs
         const std::string file = write_scene(make_scene, discs, 400, 400, failed);
         bench::Stats time;
         for (int r = 0; r < runs; ++r) time.samples.push_back(timed({raytracer.string(), file}).seconds);
-        std::printf(" t = 1e-%d %.1f ms%s", exponent, time.median() * 1e3, exponent == 11 ? "\n" : ",");
+        std::printf(" t = 1e-%d %.1f ms", exponent, time.median() * 1e3);
         std::error_code ignored;
         for (const char* end : {".txt", ".ppm"}) fs::remove(discs.name + end, ignored);
     }
+    std::printf("\n");
     for (const ScaleScene& s : scenes) {
         std::error_code ignored;
         for (const char* end : {".txt", ".ppm", "-pov.ppm", "-embree.ppm", "-small.txt", "-small.ppm"})
