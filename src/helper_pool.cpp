@@ -1,6 +1,7 @@
 #include "raytracer/helper_pool.h"
 
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <csignal>
 #include <cstdint>
@@ -41,11 +42,18 @@ struct Pool {
     std::mutex wake_mutex;
     std::condition_variable wake;
     bool retired = false;  // under wake_mutex: the helpers end (retire())
+    // finish() sleeping until inside is 0; the helper leaving last wakes it.
+    std::atomic<bool> finisher_asleep{false};
+    std::condition_variable all_left;  // with wake_mutex
 #if RT_HELPERS_PINNED_START
     cpu_set_t process_cpus;
     bool have_process_cpus = false;
 #endif
 };
+
+// How long finish() yields before it sleeps: about as long as a helper takes to wake
+// (0.05-0.15 ms here), longer than most last bands take to end.
+constexpr std::chrono::microseconds kYieldBeforeSleep{200};
 
 // Never destroyed: sleeping helpers wait on it until retire() or the end of the process.
 Pool& pool() {
@@ -69,7 +77,13 @@ void serve(unsigned index) {
         const std::uint64_t state = p.state.load();
         if ((state & 1U) != 0 && index < p.helpers) p.body(p.context, index);
         seen = state >> 1;
-        p.inside.fetch_sub(1);
+        // Leaving before reading finisher_asleep pairs with finish(), which raises it
+        // before reading inside: either finish() sees no helper inside, or this one
+        // sees it asleep and wakes it (under the mutex, so not before it sleeps).
+        if (p.inside.fetch_sub(1) == 1 && p.finisher_asleep.load()) {
+            const std::lock_guard<std::mutex> lock(p.wake_mutex);
+            p.all_left.notify_all();
+        }
     }
 }
 
@@ -185,8 +199,17 @@ void HelperPool::Job::finish() {
     if (!started_) return;
     Pool& p = pool();
     p.state.store(p.state.load() & ~std::uint64_t(1));  // closed: no helper enters now
-    // The helpers inside are on their last band of rows.
-    while (p.inside.load() != 0) std::this_thread::yield();
+    // The helpers inside are mostly on their last band of rows, about to leave: this
+    // thread yields meanwhile, then sleeps, so that a helper kept long (its write to a
+    // pipe that is not read, half of a large tree's build) costs no core.
+    const auto yield_until = std::chrono::steady_clock::now() + kYieldBeforeSleep;
+    while (p.inside.load() != 0 && std::chrono::steady_clock::now() < yield_until) std::this_thread::yield();
+    if (p.inside.load() != 0) {
+        std::unique_lock<std::mutex> lock(p.wake_mutex);
+        p.finisher_asleep.store(true);
+        p.all_left.wait(lock, [&p] { return p.inside.load() == 0; });
+        p.finisher_asleep.store(false);
+    }
     started_ = false;
     p.job_mutex.unlock();
 }

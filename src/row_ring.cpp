@@ -47,10 +47,13 @@ void RowRing::hand_over(int at_least) {
 
 void RowRing::reserve(int end) {
     while (end - written_.load(std::memory_order_acquire) > ring_rows_) {
-        if (writing_.try_lock()) {
+        {
+            // Where another thread is writing, this one sleeps until it is done: that
+            // write may wait long on a slow reader of a pipe.
+            const std::lock_guard<std::mutex> lock(writing_);
             hand_over(1);
-            writing_.unlock();
         }
+        // The rows before are not all finished: an older band is still being rendered.
         if (end - written_.load(std::memory_order_acquire) > ring_rows_) std::this_thread::yield();
     }
 }

@@ -25,7 +25,8 @@ namespace rt {
 // gets every row exactly once, in order, in whole rows, one call at a time.
 //
 // A band waits in reserve() only while the rows a ring earlier are not yet written (a
-// thread stalled on an early band); the waiting thread writes what it can meanwhile.
+// thread stalled on an early band, or a write the sink holds up); the waiting thread
+// writes what it can meanwhile, and sleeps while another thread writes.
 // The wait always ends: the oldest band being rendered never waits (every row before
 // it is finished, so it can write up to its first row), and the later ones wait only
 // for older ones.
