@@ -24,6 +24,11 @@ std::string escaped(std::string_view text, std::size_t most = kMaxShownPath);
 // Quoted, escaped and cut: 'text', or 'first bytes...' (N bytes).
 std::string shown(std::string_view text, std::size_t most = kMaxShownToken);
 
+// The control characters alone escaped as \xNN (C0, DEL, and C1 as UTF-8 writes them),
+// the rest as it is: for whole lines of text that hold names already shown (the
+// grader's report), where other UTF-8 stays readable and no escape sequence gets through.
+std::string controls_escaped(std::string_view text);
+
 // A count and its noun: "1 light", "2 lights" (plural(n, "light", "lights")).
 std::string plural(long long count, const char* one, const char* many);
 

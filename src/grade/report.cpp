@@ -42,13 +42,14 @@ void print_scene(const SceneResult& r, const std::string& picture) {
     const int marks = r.passed() ? kMarksPerScene : 0;
     const char* result = r.passed() ? "pass" : "FAIL";
     if (!r.problem.empty()) {
-        std::printf("%s %9s %11s %8.3f  %-6s %d/%d  %s\n", padded(r.name, 20).c_str(), "-", "-", r.seconds,
-                    result, marks, kMarksPerScene, r.problem.c_str());
+        std::printf("%s %9s %11s %8.3f  %-6s %d/%d  %s\n", padded(rt::controls_escaped(r.name), 20).c_str(),
+                    "-", "-", r.seconds, result, marks, kMarksPerScene,
+                    rt::controls_escaped(r.problem).c_str());
     } else {
-        std::printf("%s %9lld %11lld %8.3f  %-6s %d/%d\n", padded(r.name, 20).c_str(), r.judgement.differing,
-                    r.judgement.unexplained, r.seconds, result, marks, kMarksPerScene);
+        std::printf("%s %9lld %11lld %8.3f  %-6s %d/%d\n", padded(rt::controls_escaped(r.name), 20).c_str(),
+                    r.judgement.differing, r.judgement.unexplained, r.seconds, result, marks, kMarksPerScene);
     }
-    for (const std::string& note : r.notes) std::printf("    note: %s\n", note.c_str());
+    for (const std::string& note : r.notes) std::printf("    note: %s\n", rt::controls_escaped(note).c_str());
     if (r.problem.empty() && !r.judgement.passed()) {
         const Judgement& j = r.judgement;
         const Box& b = j.unexplained_box;
@@ -61,7 +62,8 @@ void print_scene(const SceneResult& r, const std::string& picture) {
             std::printf("    ... and %lld more\n",
                         j.unexplained - static_cast<long long>(j.first_unexplained.size()));
     }
-    if (!picture.empty()) std::printf("    picture (key | yours | difference): %s\n", picture.c_str());
+    if (!picture.empty())
+        std::printf("    picture (key | yours | difference): %s\n", rt::controls_escaped(picture).c_str());
     std::fflush(stdout);
 }
 
