@@ -2,6 +2,7 @@
 // write never leaves a partial image nor clobbers an existing one.
 #include "raytracer/ppm.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <cstdint>
@@ -9,10 +10,12 @@
 #include <cstring>
 #include <exception>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <system_error>
 
 #include "raytracer/output_file.h"
+#include "raytracer/shown.h"
 
 namespace rt {
 
@@ -68,7 +71,7 @@ using File = std::unique_ptr<std::FILE, int (*)(std::FILE*)>;
 File open_to_read(const std::string& file_name, std::string& error) {
     std::error_code ec;
     if (std::filesystem::is_directory(std::filesystem::u8path(file_name), ec)) {
-        error = "'" + file_name + "' is a folder";
+        error = shown(file_name, kMaxShownPath) + " is a folder";
         return {nullptr, &std::fclose};
     }
     errno = 0;
@@ -78,42 +81,48 @@ File open_to_read(const std::string& file_name, std::string& error) {
     std::FILE* const file = std::fopen(file_name.c_str(), "rb");
 #endif
     if (file == nullptr)
-        error =
-            "cannot open '" + file_name + "'" + (errno != 0 ? std::string(": ") + std::strerror(errno) : "");
+        error = "cannot open " + shown(file_name, kMaxShownPath) +
+                (errno != 0 ? std::string(": ") + std::strerror(errno) : "");
     return {file, &std::fclose};
 }
 
-// Header: P6, width, height, maxval, separated by whitespace and # comments, then
-// exactly one whitespace byte before the pixels. False, with `error` set, where the file
-// is not a binary PPM with maxval 255 of at most 2^31 pixels.
+// Netpbm's P6 header: the two bytes "P6" first, then width, height and maxval as
+// decimal numbers, each after whitespace and # comments and ending at one of them, and
+// exactly one whitespace byte (the one that ends maxval) before the pixels. False, with
+// `error` set, where the file is not a binary PPM with maxval 255 of at most 2^31 - 1
+// pixels: a header that a PPM reader would refuse ("P6\n600abc 600\n...") is not taken
+// for the numbers it starts with.
 bool read_header(std::FILE* in, const std::string& file_name, int& width, int& height, std::string& error) {
-    std::string fields[4];
-    for (std::string& field : fields) {
+    const std::string name = shown(file_name, kMaxShownPath);
+    const auto refuse = [&error, &name] {
+        error = name + " is not a binary PPM (P6) with maxval 255";
+        return false;
+    };
+    if (std::fgetc(in) != 'P' || std::fgetc(in) != '6') return refuse();
+    long long numbers[3] = {};
+    std::string digits[3];
+    for (int k = 0; k < 3; ++k) {
         int c = std::fgetc(in);
+        if (c == EOF || (!std::isspace(c) && c != '#')) return refuse();  // "P61", "600abc"
         while (c != EOF && (std::isspace(c) || c == '#')) {
             if (c == '#')
                 while (c != EOF && c != '\n') c = std::fgetc(in);
             c = std::fgetc(in);
         }
-        while (c != EOF && !std::isspace(c)) {
-            field += static_cast<char>(c);
-            c = std::fgetc(in);
+        for (; c != EOF && std::isdigit(c) != 0; c = std::fgetc(in)) {
+            if (numbers[k] < (1LL << 40)) numbers[k] = numbers[k] * 10 + (c - '0');  // larger is refused
+            digits[k] += static_cast<char>(c);
         }
+        // Width and height end at whitespace or a comment, which the next separator
+        // reads again; maxval ends at the one whitespace byte before the pixels.
+        const bool ended = c != EOF && (std::isspace(c) != 0 || (k < 2 && c == '#'));
+        if (digits[k].empty() || !ended) return refuse();
+        if (k < 2) std::ungetc(c, in);
     }
-    long long w = 0, h = 0;
-    try {
-        w = std::stoll(fields[1]);
-        h = std::stoll(fields[2]);
-    } catch (const std::exception&) {
-        w = h = 0;
-    }
-    if (fields[0] != "P6" || fields[3] != "255" || w <= 0 || h <= 0) {
-        error = "'" + file_name + "' is not a binary PPM (P6) with maxval 255";
-        return false;
-    }
-    if (w > (1LL << 31) / h) {
-        error = "'" + file_name + "' is a P6 of " + fields[1] + "x" + fields[2] +
-                " pixels, more than the 2^31 read";
+    const long long w = numbers[0], h = numbers[1];
+    if (numbers[2] != 255 || w <= 0 || h <= 0) return refuse();
+    if (w > std::numeric_limits<int>::max() / h) {
+        error = name + " is a P6 of " + digits[0] + "x" + digits[1] + " pixels, more than the 2^31 - 1 read";
         return false;
     }
     width = static_cast<int>(w), height = static_cast<int>(h);
@@ -130,10 +139,20 @@ bool read_ppm_size(const std::string& file_name, int& width, int& height, std::s
 bool read_ppm(const std::string& file_name, Image& image, std::string& error, std::uint64_t* bytes_after) {
     const File in = open_to_read(file_name, error);
     if (!in || !read_header(in.get(), file_name, image.width, image.height, error)) return false;
-    image.rgb.assign(static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) * 3, 0);
-    if (std::fread(image.rgb.data(), 1, image.rgb.size(), in.get()) != image.rgb.size()) {
-        error = "'" + file_name + "' is shorter than its header says";
-        return false;
+    // Grown as the bytes come, doubling, so that a header claiming more pixels than the
+    // file holds costs about the file's size in memory, not the header's.
+    const std::size_t size =
+        static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) * 3;
+    image.rgb.clear();
+    for (std::size_t got = 0; got < size;) {
+        const std::size_t chunk = std::min(size - got, std::max(got, std::size_t{1} << 20));
+        image.rgb.resize(got + chunk);
+        const std::size_t read = std::fread(image.rgb.data() + got, 1, chunk, in.get());
+        got += read;
+        if (read < chunk) {
+            error = shown(file_name, kMaxShownPath) + " is shorter than its header says";
+            return false;
+        }
     }
     if (bytes_after != nullptr) {
         *bytes_after = 0;

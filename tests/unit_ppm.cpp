@@ -220,6 +220,58 @@ TEST(read_ppm_says_why_it_refuses) {
     CHECK_EQ(height, 30000);
 }
 
+// Netpbm's header and nothing looser: a header a PPM reader refuses is refused, not
+// read for the numbers it starts with; comments and any whitespace between fields pass.
+TEST(read_ppm_takes_only_a_well_formed_header) {
+    ScratchFolder dir;
+    const std::string pixels(12, 'A');
+    auto reads = [&dir](const std::string& bytes) {
+        std::ofstream(dir.file("h.ppm"), std::ios::binary) << bytes;
+        rt::Image image;
+        std::string error;
+        const bool read = rt::read_ppm(dir.file("h.ppm"), image, error);
+        CHECK(read == error.empty());
+        CHECK(read || error.find("is not a binary PPM (P6) with maxval 255") != std::string::npos);
+        return read && image.width == 2 && image.height == 2;
+    };
+    CHECK(reads("P6\n2 2\n255\n" + pixels));
+    CHECK(reads("P6 2\t2\r\n255\n" + pixels));
+    CHECK(reads("P6#a comment\n2#another\n  2 \n# and one more\n255\n" + pixels));
+    CHECK(reads("P6\n02 2\n0255\n" + pixels));
+    CHECK(!reads("\nP6\n2 2\n255\n" + pixels));  // the magic number first
+    CHECK(!reads(" P6\n2 2\n255\n" + pixels));
+    CHECK(!reads("P62 2\n255\n" + pixels));
+    CHECK(!reads("P6\n2abc 2\n255\n" + pixels));
+    CHECK(!reads("P6\n2 2junk\n255\n" + pixels));
+    CHECK(!reads("P6\n2 2.9\n255\n" + pixels));
+    CHECK(!reads("P6\n2 +2\n255\n" + pixels));
+    CHECK(!reads("P6\n2 -2\n255\n" + pixels));
+    CHECK(!reads("P6\n2 2\n255#\n" + pixels));  // one whitespace byte before the pixels
+    CHECK(!reads("P6\n2 2\n65535\n" + pixels + pixels));
+    CHECK(!reads("P6\n0 2\n255\n"));
+    CHECK(!reads("P6\n2 2\n255"));
+}
+
+// A header claiming more than the file holds: refused as short, with no more memory
+// than the file's; past 2^31 - 1 pixels (2^31 itself would not fit an int) from the header.
+TEST(read_ppm_trusts_no_header_with_memory) {
+    ScratchFolder dir;
+    rt::Image image;
+    std::string error;
+    std::ofstream(dir.file("claims.ppm"), std::ios::binary) << "P6\n46000 46000\n255\n"
+                                                            << std::string(100, 'A');
+    CHECK(!rt::read_ppm(dir.file("claims.ppm"), image, error));  // 6.3 GB claimed
+    CHECK(error.find("is shorter than its header says") != std::string::npos);
+    CHECK(image.rgb.capacity() <= std::size_t{1} << 20);
+    for (const char* header :
+         {"P6\n2147483648 1\n255\n", "P6\n65536 32768\n255\n", "P6\n1 99999999999999999999\n255\n"}) {
+        std::ofstream(dir.file("big.ppm"), std::ios::binary) << header;
+        error.clear();
+        CHECK(!rt::read_ppm(dir.file("big.ppm"), image, error));
+        CHECK(error.find("pixels, more than the 2^31 - 1 read") != std::string::npos);
+    }
+}
+
 TEST(read_ppm_counts_the_bytes_after_the_pixels) {
     ScratchFolder dir;
     CHECK_EQ(rt::save_imageP6(2, 2, dir.file("a.ppm").c_str(), kPixels), std::string());

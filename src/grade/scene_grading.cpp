@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
+#include <new>
 #include <system_error>
 #include <thread>
 
@@ -77,7 +78,14 @@ std::string files_in(const fs::path& folder) {
 // take gigabytes.
 std::string read_output(const fs::path& folder, const std::string& output_name, const rt::Image& key,
                         rt::Image& image, std::vector<std::string>& notes) {
-    const fs::path output = folder / fs::u8path(output_name);
+    // Only a name in the run's folder: an absolute path or one with '..' would grade a
+    // file that was there before the run (raytracer.exe refuses such an OUTPUT itself).
+    const fs::path name = fs::u8path(output_name);
+    if (name.has_root_name() || name.has_root_directory() ||
+        std::any_of(name.begin(), name.end(), [](const fs::path& part) { return part == ".."; }))
+        return "OUTPUT " + rt::shown(output_name, rt::kMaxShownPath) +
+               " is outside the run's folder, expected a file name in it";
+    const fs::path output = folder / name;
     std::error_code ec;
     if (fs::is_directory(output, ec)) return "wrote a folder named " + output_name + " (OUTPUT of the scene)";
     if (!fs::is_regular_file(output, ec))
@@ -146,7 +154,13 @@ SceneResult grade_scene(const fs::path& scene, const Options& options, const fs:
         result.ungradable = true;
         return result;
     }
-    if (!rt::read_ppm(key_file.u8string(), result.key, error)) {
+    bool key_read = false;
+    try {
+        key_read = rt::read_ppm(key_file.u8string(), result.key, error);
+    } catch (const std::bad_alloc&) {  // a real image too large for this machine
+        error = "out of memory reading " + rt::shown(key_file.u8string(), rt::kMaxShownPath);
+    }
+    if (!key_read) {
         result.problem = "no usable key: " + error;
         result.ungradable = true;
         return result;

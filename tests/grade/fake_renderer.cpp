@@ -10,6 +10,7 @@
 //   wrong_size  the key's top-left half in each direction wrong_name  the image as a.ppm
 //   p3          the key as a text (P3) PPM                shifted     the key moved one pixel right
 //   huge_header only a header of 30000x30000 pixels        escapes     terminal escapes on stderr, status 3
+//   lax_header  the key under "600abc 600junk", which a PPM reader refuses
 //   straggler   the key, leaving a process running (POSIX; its pid to FAKE_RENDERER_PID_FILE)
 //   trailing    the key with 5 bytes after its pixels
 #include <chrono>
@@ -176,6 +177,12 @@ int main(int argc, char** argv) {
         for (std::uint8_t& v : image.rgb) v = static_cast<std::uint8_t>(v == 255 ? 254 : v + 1);
     if (mode == "wrong_size") image = top_left_half(image);
     if (mode == "shifted") image = shifted_right(image);
+    if (mode == "lax_header") {
+        std::ofstream(output, std::ios::binary) << "P6\n"
+                                                << image.width << "abc " << image.height << "junk\n255\n"
+                                                << std::string(image.rgb.begin(), image.rgb.end());
+        return 0;
+    }
     if (mode == "p3")
         write_p3(output, image);
     else

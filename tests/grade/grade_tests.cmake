@@ -1,7 +1,7 @@
 # Included by tests/CMakeLists.txt (so that the Wine block there covers these tests too).
 # The programs are built always (clang-tidy reads every source); the tests need the course
 # scenes and keys, as the golden tests do, and are left out where those are absent.
-set(fake_modes black pixel64 one_level hang segfault exit1 wrong_size wrong_name p3 shifted huge_header escapes
+set(fake_modes black pixel64 one_level hang segfault exit1 wrong_size wrong_name p3 shifted huge_header escapes lax_header
                straggler trailing)
 foreach(mode ${fake_modes})
   add_executable(fake_${mode} grade/fake_renderer.cpp)
@@ -88,8 +88,23 @@ grade_test(html-onto-a-scene one_level 2 "is a scene being graded, expected a ne
 set(GRADE_SCENES "${course_scene_dir}")
 unset(GRADE_EXTRA)
 
+# Keys whose headers claim what the file does not hold: each scene says so, the others are
+# graded (a 6.3 GB claim costs no 6.3 GB; 2^31 x 1 pixels is refused from the header).
+set(GRADE_EXTRA -DCLEAN=${grade_out}/bad-keys "-DCOPY=${course_scene_dir}/testShadow.txt|${grade_out}/bad-keys/scenes|${course_scene_dir}/testSample.txt|${grade_out}/bad-keys/scenes|${course_scene_dir}/testAmbient.txt|${grade_out}/bad-keys/scenes|${course_scene_dir}/../keys/keyShadow.ppm|${grade_out}/bad-keys/keys|${CMAKE_CURRENT_SOURCE_DIR}/grade/bad_keys/keySample.ppm|${grade_out}/bad-keys/keys|${CMAKE_CURRENT_SOURCE_DIR}/grade/bad_keys/keyAmbient.ppm|${grade_out}/bad-keys/keys")
+set(GRADE_SCENES "${grade_out}/bad-keys/scenes")
+grade_test(bad-keys one_level 1 "testSample                   -           -    0.000  FAIL   0/2  no usable key: '|keySample.ppm' is a P6 of 2147483648x1 pixels, more than the 2^31 - 1 read|keyAmbient.ppm' is shorter than its header says|testShadow              360000           0|marks 2/6: 1 of 3 scenes pass; 2 without a readable scene or key to grade by: FAIL")
+# A renderer's header that a PPM reader refuses is not read for its numbers.
+set(GRADE_SCENES "${course_scene_dir}")
+unset(GRADE_EXTRA)
+grade_test(lax-header lax_header 1 "'testShadow.ppm' is not a binary PPM (P6) with maxval 255|marks 0/2" --only testShadow)
+# An OUTPUT outside the run's folder would grade a file that was there before the run.
+set(GRADE_SCENES "${CMAKE_CURRENT_SOURCE_DIR}/grade/outside/scenes")
+grade_test(output-outside one_level 1 "OUTPUT '../testOutside.ppm' is outside the run's folder, expected a file name in it|marks 0/2")
+set(GRADE_SCENES "${course_scene_dir}")
+
 grade_test(help one_level 0 "usage: raytracer-grade [--raytracer EXE]|every channel is off by at most one level|ambiguous pixels" --help)
 grade_test(bad-timeout one_level 2 "--timeout 'soon' is not a number of seconds" --timeout soon)
+grade_test(hex-timeout one_level 2 "--timeout '0x10' is not a number of seconds" --timeout 0x10)
 
 # Interrupting the grader while a render hangs (POSIX signals; on Windows, Ctrl-C is not
 # sent to a program under Wine by CTest).
