@@ -1,5 +1,6 @@
 #include "raytracer/command_line.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <string_view>
 #include <vector>
@@ -12,11 +13,12 @@ namespace {
 constexpr unsigned kMaxThreads = 1024;
 
 bool parse_threads(const std::string& text, unsigned& threads) {
-    if (text.empty() || text.size() > 5) return false;
+    if (text.empty()) return false;
     unsigned long n = 0;
     for (const char c : text) {
         if (c < '0' || c > '9') return false;
-        n = n * 10 + static_cast<unsigned long>(c - '0');
+        n = std::min(n * 10 + static_cast<unsigned long>(c - '0'),
+                     100000UL);  // any length, leading zeros too
     }
     if (n == 0 || n > kMaxThreads) return false;
     threads = static_cast<unsigned>(n);

@@ -107,6 +107,9 @@ TEST(a_wrong_command_line_exits_2_with_one_line_on_stderr) {
         {{"scene.txt", "-x"}, "unknown option '-x'"},
         {{"--threads", "0", "scene.txt"}, "--threads '0', expected a whole number from 1 to 1024"},
         {{"scene.txt", "--threads=abc"}, "--threads 'abc'"},
+        {{"--threads", "1025", "scene.txt"}, "--threads '1025', expected a whole number from 1 to 1024"},
+        {{"--threads", "99999999999999999999999", "scene.txt"}, "--threads '9999999999999999999999"},
+        {{"--threads", "+2", "scene.txt"}, "--threads '+2'"},
         {{"scene.txt", "--threads"}, "--threads without a value"},
         {{"scene.txt", "-o"}, "-o without a value"},
         {{"scene.txt", "--output="}, "--output with an empty path"},
@@ -136,9 +139,14 @@ TEST(options_go_anywhere_in_either_form) {
     write_bytes(folder.work / "scene.txt", empty_scene("picture.ppm"));
     write_bytes(folder.work / "-scene.txt", empty_scene("dash.ppm"));
     const std::vector<std::vector<std::string>> right = {
-        {"--threads", "2", "scene.txt"}, {"scene.txt", "--threads", "2"},
-        {"--threads=1", "scene.txt"},    {"scene.txt", "--quiet"},
-        {"--progress", "scene.txt"},     {"--threads=2", "--", "-scene.txt"}};
+        {"--threads", "2", "scene.txt"},
+        {"scene.txt", "--threads", "2"},
+        {"--threads=1", "scene.txt"},
+        {"scene.txt", "--quiet"},
+        {"--progress", "scene.txt"},
+        {"--threads=2", "--", "-scene.txt"},
+        {"--threads=00002", "scene.txt"},
+        {"--threads", "0000000001024", "scene.txt"}};  // leading zeros, any number
     for (const std::vector<std::string>& arguments : right) {
         const Run r = run(folder, arguments);
         CHECK_EQ(r.status, 0);
