@@ -74,8 +74,8 @@ bool standard_streams_are_one_file(int a, int b) {
     return stream_identity(a, x) && stream_identity(b, y) && same_identity(x, y);
 }
 
-// A closed standard output has no handle at all here: writing it fails and says so.
-bool standard_output_is_folder() { return false; }
+// A closed standard stream has no handle at all here: writing it fails and says so.
+bool standard_stream_is_folder(int /*stream*/) { return false; }
 bool is_link(const std::string&) { return false; }
 
 // The folder's path with the links and junctions on the way resolved: the one the system
@@ -191,12 +191,11 @@ bool standard_streams_are_one_file(int a, int b) {
     return ::fstat(a, &x) == 0 && ::fstat(b, &y) == 0 && S_ISREG(x.st_mode) && same_identity(x, y);
 }
 
-// Whether standard output is a folder, where no image can go: closed when the program
-// started (main() then holds its number open on the root folder:
-// keep_standard_streams_apart()), or a folder handed to it as such.
-bool standard_output_is_folder() {
+// Whether standard stream 0, 1 or 2 is a folder, where no image can go: closed at the start
+// (main() holds its number open on the root folder: keep_standard_streams_apart()), or given so.
+bool standard_stream_is_folder(int stream) {
     struct stat s {};
-    return ::fstat(1, &s) == 0 && S_ISDIR(s.st_mode);
+    return ::fstat(stream, &s) == 0 && S_ISDIR(s.st_mode);
 }
 
 // Whether the path as given is a symbolic link (/dev/stdout, /proc/self/fd/1).
@@ -322,7 +321,7 @@ OutputChoice choose_output(const std::string& scene_output, const std::string* u
     choice.path = choice.named_by_user ? *user_output : scene_output;
     if (choice.named_by_user && choice.path == "-") {
         choice.destination = Destination::StandardOutput;
-        if (standard_output_is_folder())  // raytracer.exe -o - scene.txt >&-
+        if (standard_stream_is_folder(1))  // raytracer.exe -o - scene.txt >&-
             choice.refusal = "- (standard output) is closed (or a folder), expected a pipe or a file";
         // raytracer.exe -o - scene.txt >> scene.txt
         else if (from_standard_input ? standard_streams_are_one_file(1, 0)
@@ -345,12 +344,16 @@ OutputChoice choose_output(const std::string& scene_output, const std::string* u
         return choice;
     }
     const Existing existing = what_is_at(choice.path);
-    if (choice.named_by_user && existing == Existing::Folder && is_link(choice.path) &&
-        standard_output_is_folder() && standard_stream_is(1, choice.path)) {
-        choice.refusal = shown(choice.path, kMaxShownPath) +
-                         " is standard output, which is closed (or a folder), expected a pipe or a file";
-        return choice;
-    }
+    // -o /dev/stdout (or /dev/fd/N) with the stream closed: said so, not "a folder".
+    const char* const stream_names[] = {"input", "output", "error"};
+    for (const int stream : {0, 1, 2})
+        if (choice.named_by_user && existing == Existing::Folder && is_link(choice.path) &&
+            standard_stream_is_folder(stream) && standard_stream_is(stream, choice.path)) {
+            choice.refusal = shown(choice.path, kMaxShownPath) + " is standard " + stream_names[stream] +
+                             ", which is closed (or a folder), expected " +
+                             (stream == 1 ? "a pipe or a file" : "another file");
+            return choice;
+        }
     if (existing == Existing::Nothing || existing == Existing::Folder)
         return choice;  // a folder: PendingFile says so
     if (from_standard_input ? existing == Existing::RegularFile && standard_stream_is(0, choice.path)

@@ -774,6 +774,17 @@ TEST(o_naming_standard_output_writes_to_it) {
         CHECK(captured_stderr(folder).find("-o '/dev/stdout' is standard output, which is closed") !=
               std::string::npos);
     }
+    if (fs::exists("/dev/fd/0")) {  // standard input and error alike
+        for (const auto& [stream, name] : {std::pair<unsigned, const char*>{0, "input"}, {2, "error"}}) {
+            Options closed_stream;
+            closed_stream.closed_streams = 1U << stream;
+            const std::string path = "/dev/fd/" + std::to_string(stream);
+            CHECK_EQ(run(folder, {"-o", path, "scene.txt"}, closed_stream), 3);
+            if (stream != 2)
+                CHECK(captured_stderr(folder).find("-o '" + path + "' is standard " + name +
+                                                   ", which is closed") != std::string::npos);
+        }
+    }
 }
 
 // A reader that stops reading (a pager, a slow converter) holds the render up, and the
