@@ -122,7 +122,8 @@ bool read_header(std::FILE* in, const std::string& file_name, int& width, int& h
     const long long w = numbers[0], h = numbers[1];
     if (numbers[2] != 255 || w <= 0 || h <= 0) return refuse();
     if (w > std::numeric_limits<int>::max() / h) {
-        error = name + " is a P6 of " + digits[0] + "x" + digits[1] + " pixels, more than the 2^31 - 1 read";
+        error = name + " is a P6 of " + escaped(digits[0], kMaxShownToken) + "x" +
+                escaped(digits[1], kMaxShownToken) + " pixels, more than the 2^31 - 1 read";
         return false;
     }
     width = static_cast<int>(w), height = static_cast<int>(h);
