@@ -76,7 +76,7 @@ bool standard_streams_are_one_file(int a, int b) {
 
 // A closed standard stream has no handle at all here: writing it fails and says so.
 bool standard_stream_is_folder(int /*stream*/) { return false; }
-bool is_link(const std::string&) { return false; }
+std::string closed_stream_named(const std::string& /*path*/) { return {}; }
 
 // The folder's path with the links and junctions on the way resolved: the one the system
 // gives it once opened (some standard libraries' fs::canonical leaves links as they are
@@ -191,17 +191,24 @@ bool standard_streams_are_one_file(int a, int b) {
     return ::fstat(a, &x) == 0 && ::fstat(b, &y) == 0 && S_ISREG(x.st_mode) && same_identity(x, y);
 }
 
-// Whether standard stream 0, 1 or 2 is a folder, where no image can go: closed at the start
-// (main() holds its number open on the root folder: keep_standard_streams_apart()), or given so.
+// Whether standard stream 0, 1 or 2 is a folder: closed at the start (main() opens it on /), or given so.
 bool standard_stream_is_folder(int stream) {
     struct stat s {};
     return ::fstat(stream, &s) == 0 && S_ISDIR(s.st_mode);
 }
 
-// Whether the path as given is a symbolic link (/dev/stdout, /proc/self/fd/1).
-bool is_link(const std::string& path) {
+// Why -o cannot name this path, or empty: a link (/dev/stdout, /dev/fd/N) to a standard
+// stream that is closed, said so rather than "a folder" (the one main() holds it open on).
+std::string closed_stream_named(const std::string& path) {
+    const char* const names[] = {"input", "output", "error"};
     struct stat s {};
-    return ::lstat(path.c_str(), &s) == 0 && S_ISLNK(s.st_mode);
+    for (const int stream : {0, 1, 2})
+        if (::lstat(path.c_str(), &s) == 0 && S_ISLNK(s.st_mode) && standard_stream_is_folder(stream) &&
+            standard_stream_is(stream, path))
+            return shown(path, kMaxShownPath) + " is standard " + names[stream] +
+                   ", which is closed (or a folder), expected " +
+                   (stream == 1 ? "a pipe or a file" : "another file");
+    return {};
 }
 
 // Whether the system refuses the path as too long (a name past its folder's limit, or a
@@ -344,16 +351,9 @@ OutputChoice choose_output(const std::string& scene_output, const std::string* u
         return choice;
     }
     const Existing existing = what_is_at(choice.path);
-    // -o /dev/stdout (or /dev/fd/N) with the stream closed: said so, not "a folder".
-    const char* const stream_names[] = {"input", "output", "error"};
-    for (const int stream : {0, 1, 2})
-        if (choice.named_by_user && existing == Existing::Folder && is_link(choice.path) &&
-            standard_stream_is_folder(stream) && standard_stream_is(stream, choice.path)) {
-            choice.refusal = shown(choice.path, kMaxShownPath) + " is standard " + stream_names[stream] +
-                             ", which is closed (or a folder), expected " +
-                             (stream == 1 ? "a pipe or a file" : "another file");
-            return choice;
-        }
+    if (choice.named_by_user && existing == Existing::Folder)
+        choice.refusal = closed_stream_named(choice.path);
+    if (!choice.refusal.empty()) return choice;
     if (existing == Existing::Nothing || existing == Existing::Folder)
         return choice;  // a folder: PendingFile says so
     if (from_standard_input ? existing == Existing::RegularFile && standard_stream_is(0, choice.path)
