@@ -52,7 +52,8 @@ struct Pool {
 };
 
 // How long finish() yields before it sleeps: about as long as a helper takes to wake
-// (0.05-0.15 ms here), longer than most last bands take to end.
+// (0.05-0.15 ms here). Counted: 112 of 120 course renders at 400x400 ended within it; the
+// halves of a tree's build mostly do not (random 100k: 4 of 5 slept).
 constexpr std::chrono::microseconds kYieldBeforeSleep{200};
 
 // Never destroyed: sleeping helpers wait on it until retire() or the end of the process.
