@@ -68,17 +68,22 @@ ProgressSink::ProgressSink(RowSink& inner, int total_rows, bool enabled)
 
 void ProgressSink::rows_finished(int count) {
     if (!enabled_) return;
-    done_ = count;
-    if (std::this_thread::get_id() != drawer_) return;
+    done_.store(count, std::memory_order_relaxed);
+    rendering();
+}
+
+void ProgressSink::rendering() {
+    if (!enabled_ || std::this_thread::get_id() != drawer_) return;
     const auto now = std::chrono::steady_clock::now();
-    if (now < next_draw_ || done_ >= total_) return;
+    if (now < next_draw_ || done_.load(std::memory_order_relaxed) >= total_) return;
     next_draw_ = now + kRedrawEvery;
     draw(now - start_);
 }
 
 void ProgressSink::draw(std::chrono::steady_clock::duration elapsed) {
     const double spent = std::chrono::duration<double>(elapsed).count();
-    const double fraction = total_ <= 0 ? 1.0 : static_cast<double>(done_) / static_cast<double>(total_);
+    const double done = done_.load(std::memory_order_relaxed);
+    const double fraction = total_ <= 0 ? 1.0 : done / static_cast<double>(total_);
     const double left = fraction > 0 ? spent * (1 - fraction) / fraction : 0;
     char line[96];
     const int length =

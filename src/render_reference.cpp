@@ -20,8 +20,10 @@ void render_reference_to(const Scene& scene, RowSink& sink, unsigned threads) {
         [&](int first_row, int rows, std::uint8_t* const* out, auto& scratch) {
             for (int j = 0; j < rows; ++j) {
                 const Real y = tracer.row_y(first_row + j);
-                for (int c = 0; c < scene.columns; ++c)
+                for (int c = 0; c < scene.columns; ++c) {
                     tracer.pixel(tracer.column_x(c), y, out[j] + static_cast<std::size_t>(c) * 3, scratch);
+                    if (c % 4 == 3) sink.rendering();  // a row of a large scene takes seconds here
+                }
             }
         });
 }

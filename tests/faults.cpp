@@ -19,6 +19,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <random>
 #include <string>
 #include <thread>
 #include <utility>
@@ -718,6 +719,50 @@ TEST(a_long_render_shows_progress_on_a_terminal_only) {
     fs::remove(folder.work / "out.ppm");
     CHECK_EQ(run(folder, {"--threads=1", "--progress", "slow.txt"}, closed), 0);
     CHECK(read_bytes(folder.work / "out.ppm") == image);
+}
+
+// On the reference path a row of a large scene takes seconds; the line is drawn while
+// the row renders, not only at its end. Here the image is one row of about 3 s (110 ms a
+// pixel, on one thread): a line drawn at rows' ends alone never shows. The render is
+// interrupted once the line is seen.
+TEST(a_long_row_shows_progress_while_it_renders) {
+    const Scratch folder;
+    std::minstd_rand random(5);
+    auto u = [&random](double lo, double hi) {
+        return std::to_string(lo + (hi - lo) * static_cast<double>(random()) /
+                                       static_cast<double>(std::minstd_rand::max()));
+    };
+    // A wall in front of every eye ray, 3,000 lights before it and 2,000 spheres behind
+    // it: each shadow ray is tried against every ellipsoid and blocked by none.
+    std::string text =
+        "NEAR 1\nLEFT -1\nRIGHT 1\nBOTTOM -1\nTOP 1\nRES 32 1\nBACK 0 0 0\nAMBIENT 0.1 0.1 0.1\n"
+        "OUTPUT out.ppm\nSPHERE wall 0 0 -10 100 100 1 0.5 0.5 0.5 0.1 0.5 0.5 0 10\n";
+    for (int i = 0; i < 2000; ++i)
+        text += "SPHERE s" + std::to_string(i) + " " + u(-50, 50) + " " + u(-50, 50) +
+                " -30 0.1 0.1 0.1 0.5 0.5 0.5 0.1 0.5 0.5 0 10\n";
+    for (int i = 0; i < 3000; ++i)
+        text +=
+            "LIGHT l" + std::to_string(i) + " " + u(-5, 5) + " " + u(-5, 5) + " -5 0.0003 0.0003 0.0003\n";
+    write_bytes(folder.work / "row.txt", text);
+    PseudoTerminal pty;
+    Options options;
+    options.stderr_fd = pty.terminal;
+    const auto started = std::chrono::steady_clock::now();
+    const pid_t pid = start(folder, {"--reference", "--threads", "1", "row.txt"}, options);
+    pty.close_terminal();
+    std::string shown;
+    char buffer[4096];
+    // Until the line shows, or the program ends (then reading fails).
+    for (ssize_t got; shown.find("% of rows, ") == std::string::npos &&
+                      (got = read(pty.master, buffer, sizeof buffer)) > 0;)
+        shown.append(buffer, static_cast<std::size_t>(got));
+    const std::chrono::duration<double> seen_after = std::chrono::steady_clock::now() - started;
+    kill(pid, SIGINT);
+    const int status = wait_for(pid);
+    CHECK(status == 130 || status == 0);  // 0: it ended first
+    if (shown.find("  0% of rows, ") == std::string::npos) std::cout << "shown: '" << shown << "'\n";
+    CHECK(shown.find("  0% of rows, ") != std::string::npos);  // before its one row ended
+    CHECK(seen_after.count() >= 1.0);  // nothing before a second (ProgressSink::kFirstAfter)
 }
 
 // -o naming the file standard output goes to (/dev/stdout, /dev/fd/1, /proc/self/fd/1)

@@ -6,10 +6,12 @@
 // row ring's lock (row_ring.h), and drawn only when that is the thread that made it: the
 // main thread, which the interrupt handlers run on (interrupts.h; not on Windows), so
 // that a handler never runs beside a redraw. So the line moves when the main thread
-// hands rows over, about once a band of rows of its own. One clock reading per call, a
-// redraw at most four times a second, no lock and no thread of its own.
+// hands rows over, about once a band of rows of its own, and on the reference path also
+// while it renders a row (rendering()). One clock reading per call, a redraw at most
+// four times a second, no lock and no thread of its own.
 #pragma once
 
+#include <atomic>
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
@@ -29,6 +31,7 @@ public:
     ProgressSink(RowSink& inner, int total_rows, bool enabled);
     void rows(const std::uint8_t* bytes, std::size_t size) override { inner_.rows(bytes, size); }
     void rows_finished(int count) override;
+    void rendering() override;
     // Erases the line, if one was drawn.
     void clear_line();
 
@@ -42,7 +45,7 @@ private:
 
     RowSink& inner_;
     const int total_;
-    int done_ = 0;
+    std::atomic<int> done_{0};  // written by the thread that writes, read by the drawer
     const bool enabled_;
     int width_ = 0;  // the longest line that fits the terminal
     int drawn_ = 0;  // the length of the line on the terminal; 0: none

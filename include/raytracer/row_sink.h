@@ -19,6 +19,10 @@ public:
     // display. Called by the thread that writes, under the same rule as rows(), as often
     // as once per finished row; the default does nothing.
     virtual void rows_finished(int count) { (void)count; }
+    // A thread rendering a long row (the reference path, every few pixels): for a
+    // progress display that would otherwise wait for the row's end. Called by any of the
+    // render's threads at any time, beside any other call; the default does nothing.
+    virtual void rendering() {}
 
 protected:
     RowSink() = default;
