@@ -14,10 +14,10 @@ constexpr unsigned kMaxThreads = 1024;
 
 bool parse_threads(const std::string& text, unsigned& threads) {
     if (text.empty()) return false;
-    unsigned long n = 0;  // of any length, leading zeros too: held at 100000 past that
+    unsigned long n = 0;  // of any length, leading zeros too: held just past the largest allowed
     for (const char c : text) {
         if (c < '0' || c > '9') return false;
-        n = std::min(n * 10 + static_cast<unsigned long>(c - '0'), 100000UL);
+        n = std::min(n * 10 + static_cast<unsigned long>(c - '0'), kMaxThreads + 1UL);
     }
     if (n == 0 || n > kMaxThreads) return false;
     threads = static_cast<unsigned>(n);

@@ -1,9 +1,10 @@
 #include "options.h"
 
 #include <algorithm>
-#include <cmath>
-#include <stdexcept>
+#include <optional>
 #include <vector>
+
+#include "raytracer/scene_numbers.h"
 
 namespace grade {
 
@@ -19,20 +20,11 @@ std::filesystem::path* path_option(const std::string& name, Options& options) {
 }
 
 std::string set_timeout(const std::string& value, Options& options) {
-    // Decimal digits with at most one point: std::stod alone would also take " 5", "0x10"
-    // and "1e1".
-    const bool decimal = !value.empty() && value.find_first_not_of("0123456789.") == std::string::npos &&
-                         std::count(value.begin(), value.end(), '.') <= 1 && value != ".";
-    std::size_t used = 0;
-    double seconds = 0;
-    try {
-        if (decimal) seconds = std::stod(value, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    if (!decimal || used != value.size() || !std::isfinite(seconds) || seconds <= 0 || seconds > 1e6)
+    // A decimal number as a scene's are read (no hex, spaces, "inf" or "nan").
+    const std::optional<double> seconds = rt::to_double(value);
+    if (!seconds || *seconds <= 0 || *seconds > 1e6)
         return "--timeout '" + value + "' is not a number of seconds above 0 and at most 1000000";
-    options.timeout_seconds = seconds;
+    options.timeout_seconds = *seconds;
     return {};
 }
 
