@@ -1,7 +1,6 @@
 #include "raytracer/scene_scale.h"
 
 #include <algorithm>
-#include <climits>
 #include <cmath>
 
 namespace rt {
@@ -9,24 +8,26 @@ int length_shift(const Scene& scene) {
     // The exponents of the least size and of the greatest length: |x| in
     // [2^(e - 1), 2^e). Sizes (NEAR, the window's width and height, the scales) are
     // squared and divided by; coordinates enter only through differences, where one far
-    // below the scene's size counts as 0, so they bound the top alone.
-    int least = INT_MAX, greatest = INT_MIN;
-    auto exponent_of = [](double x) {
-        int e = 0;
-        (void)std::frexp(x, &e);
-        return e;
-    };
-    auto size = [&](double x) {
-        if (x == 0 || !std::isfinite(x)) return;  // a width may overflow: its ends count
-        const int e = exponent_of(x);
-        least = std::min(least, e), greatest = std::max(greatest, e);
-    };
+    // below the scene's size counts as 0, so they bound the top alone. The exponent
+    // grows with |x|, so the extremes' exponents are those of the extreme magnitudes:
+    // one frexp() each rather than nine a sphere (random 100k: 3 ms of a 65 ms
+    // preparation). NaN, infinities and zeros have no exponent and are passed over.
+    auto usable = [](double x) { return x != 0 && std::isfinite(x); };
+    double largest = 0, least_size = 0;  // 0: none yet
     for_each_length(scene, [&](double x) {
-        if (x != 0) greatest = std::max(greatest, exponent_of(x));
+        if (usable(x)) largest = std::max(largest, std::abs(x));
     });
+    auto size = [&](double x) {  // a width may overflow: its ends count
+        if (!usable(x)) return;
+        largest = std::max(largest, std::abs(x));
+        least_size = least_size == 0 ? std::abs(x) : std::min(least_size, std::abs(x));
+    };
     size(scene.near_plane), size(scene.right - scene.left), size(scene.top - scene.bottom);
     for (const SphereSpec& s : scene.spheres) size(s.scale.x), size(s.scale.y), size(s.scale.z);
-    if (least > greatest) return 0;  // no size (a parsed scene has NEAR > 0)
+    if (least_size == 0) return 0;  // no size (a parsed scene has NEAR > 0)
+    int least = 0, greatest = 0;
+    (void)std::frexp(least_size, &least);
+    (void)std::frexp(largest, &greatest);
     if (least >= -kLengthExponentRange && greatest <= kLengthExponentRange) return 0;
     // Held at the top, a span past three times the limit would take a size to 0.
     if (greatest - least > 3 * kLengthExponentLimit) return 0;
