@@ -92,24 +92,34 @@ File open_to_read(const std::string& file_name, std::string& error) {
 // `error` set, where the file is not a binary PPM with maxval 255 of at most 2^31 - 1
 // pixels: a header that a PPM reader would refuse ("P6\n600abc 600\n...") is not taken
 // for the numbers it starts with.
-bool read_header(std::FILE* in, const std::string& file_name, int& width, int& height, std::string& error) {
+bool read_header(std::FILE* in, const std::string& file_name, int& width, int& height, std::size_t& bytes,
+                 std::string& error) {
     const std::string name = shown(file_name, kMaxShownPath);
     const auto refuse = [&error, &name] {
         error = name + " is not a binary PPM (P6) with maxval 255";
         return false;
     };
-    if (std::fgetc(in) != 'P' || std::fgetc(in) != '6') return refuse();
+    // Bytes read from the file, up to the header's limit (an endless comment or run of
+    // blanks ends there); then EOF.
+    bytes = 0;
+    const auto next = [in, &bytes] { return bytes++ < kMaxPpmHeaderBytes ? std::fgetc(in) : EOF; };
+    if (next() != 'P' || next() != '6') return refuse();
     long long numbers[3] = {};
     std::string digits[3];
     for (int k = 0; k < 3; ++k) {
-        int c = std::fgetc(in);
+        int c = next();
         if (c == EOF || (!std::isspace(c) && c != '#')) return refuse();  // "P61", "600abc"
         while (c != EOF && (std::isspace(c) || c == '#')) {
             if (c == '#')
-                while (c != EOF && c != '\n') c = std::fgetc(in);
-            c = std::fgetc(in);
+                while (c != EOF && c != '\n') c = next();
+            c = next();
         }
-        for (; c != EOF && std::isdigit(c) != 0; c = std::fgetc(in)) {
+        if (bytes > kMaxPpmHeaderBytes) {
+            error = name + " has a header of over " + std::to_string(kMaxPpmHeaderBytes >> 10) +
+                    " KiB, expected a binary PPM (P6)";
+            return false;
+        }
+        for (; c != EOF && std::isdigit(c) != 0; c = next()) {
             if (numbers[k] < (1LL << 40)) numbers[k] = numbers[k] * 10 + (c - '0');  // larger is refused
             digits[k] += static_cast<char>(c);
         }
@@ -117,7 +127,7 @@ bool read_header(std::FILE* in, const std::string& file_name, int& width, int& h
         // reads again; maxval ends at the one whitespace byte before the pixels.
         const bool ended = c != EOF && (std::isspace(c) != 0 || (k < 2 && c == '#'));
         if (digits[k].empty() || !ended) return refuse();
-        if (k < 2) std::ungetc(c, in);
+        if (k < 2) std::ungetc(c, in), --bytes;
     }
     const long long w = numbers[0], h = numbers[1];
     if (numbers[2] != 255 || w <= 0 || h <= 0) return refuse();
@@ -134,12 +144,14 @@ bool read_header(std::FILE* in, const std::string& file_name, int& width, int& h
 
 bool read_ppm_size(const std::string& file_name, int& width, int& height, std::string& error) {
     const File in = open_to_read(file_name, error);
-    return in && read_header(in.get(), file_name, width, height, error);
+    std::size_t header = 0;
+    return in && read_header(in.get(), file_name, width, height, header, error);
 }
 
 bool read_ppm(const std::string& file_name, Image& image, std::string& error, std::uint64_t* bytes_after) {
     const File in = open_to_read(file_name, error);
-    if (!in || !read_header(in.get(), file_name, image.width, image.height, error)) return false;
+    std::size_t header = 0;
+    if (!in || !read_header(in.get(), file_name, image.width, image.height, header, error)) return false;
     // Grown as the bytes come, doubling, so that a header claiming more pixels than the
     // file holds costs about the file's size in memory, not the header's.
     const std::size_t size =
@@ -156,10 +168,15 @@ bool read_ppm(const std::string& file_name, Image& image, std::string& error, st
         }
     }
     if (bytes_after != nullptr) {
+        // From the file's size, not read: a file with gigabytes (or a sparse terabyte)
+        // after its pixels costs no time. At least one where a byte follows the pixels.
         *bytes_after = 0;
-        char rest[4096];
-        for (std::size_t got = 0; (got = std::fread(rest, 1, sizeof rest, in.get())) > 0;)
-            *bytes_after += got;
+        if (std::fgetc(in.get()) != EOF) {
+            std::error_code ec;
+            const std::uintmax_t total = std::filesystem::file_size(std::filesystem::u8path(file_name), ec);
+            const std::uintmax_t used = header + size;
+            *bytes_after = !ec && total > used ? total - used : 1;
+        }
     }
     return true;
 }

@@ -36,9 +36,14 @@ std::string save_imageP6(PendingFile& file, int width, int height, const unsigne
 std::string save_imageP6(int width, int height, const char* file_name, const unsigned char* pixels);
 std::string save_imageP3(int width, int height, const char* file_name, const unsigned char* pixels);
 
+// The longest P6 header read, comments included: a longer one is refused, so that a
+// file of endless comment costs a reader no time.
+inline constexpr std::size_t kMaxPpmHeaderBytes = std::size_t{64} << 10;
+
 // Reads a binary P6 file with maxval 255 (comments allowed in the header). Returns
 // false and says why in error when the file cannot be read or is not such a file.
-// Where bytes_after is given, it counts the bytes after the pixels (a P6 file has none).
+// Where bytes_after is given, it counts the bytes after the pixels (a P6 file has none),
+// from the file's size.
 bool read_ppm(const std::string& file_name, Image& image, std::string& error,
               std::uint64_t* bytes_after = nullptr);
 // Reads only the header of such a file: its width and height, without the memory its

@@ -113,7 +113,12 @@ ChildOutcome run_child(const ChildCommand& command) {
     STARTUPINFOW startup{};
     startup.cb = sizeof startup;
     startup.dwFlags = STARTF_USESTDHANDLES;
-    startup.hStdInput = GetStdHandle(STD_INPUT_HANDLE);
+    // Standard input from NUL: a program that waits for Enter at its end gets end of
+    // file at once, as on POSIX.
+    SECURITY_ATTRIBUTES inherited{sizeof(SECURITY_ATTRIBUTES), nullptr, TRUE};
+    HANDLE in = CreateFileW(L"NUL", GENERIC_READ, FILE_SHARE_READ | FILE_SHARE_WRITE, &inherited,
+                            OPEN_EXISTING, FILE_ATTRIBUTE_NORMAL, nullptr);
+    startup.hStdInput = in;
     startup.hStdOutput = out;
     startup.hStdError = err;
     PROCESS_INFORMATION process{};
@@ -121,6 +126,7 @@ ChildOutcome run_child(const ChildCommand& command) {
     const auto start = Clock::now();
     const BOOL started = CreateProcessW(command.program.wstring().c_str(), line.data(), nullptr, nullptr,
                                         TRUE, 0, nullptr, folder.c_str(), &startup, &process);
+    CloseHandle(in);
     CloseHandle(out);
     CloseHandle(err);
     if (!started) {
@@ -156,9 +162,14 @@ extern "C" void grader_on_interrupt(int signal) { g_interrupting_signal = signal
 // up the close-on-exec pipe, so that the grader can say why the program did not start.
 [[noreturn]] void exec_child(const ChildCommand& command, char* const* argv, int report_fd) {
     setpgid(0, 0);  // its own process group: the whole group is killed on a timeout
+    // Standard input from /dev/null: a program that waits for Enter at its end gets end
+    // of file at once, the same on a terminal as in CI (in a process group of its own, a
+    // read from the terminal would stop it with SIGTTIN until the timeout).
+    const int in = open("/dev/null", O_RDONLY);
     const int out = open(command.stdout_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     const int err = open(command.stderr_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (out >= 0 && err >= 0 && dup2(out, 1) >= 0 && dup2(err, 2) >= 0 && chdir(command.folder.c_str()) == 0)
+    if (in >= 0 && out >= 0 && err >= 0 && dup2(in, 0) >= 0 && dup2(out, 1) >= 0 && dup2(err, 2) >= 0 &&
+        chdir(command.folder.c_str()) == 0)
         execv(argv[0], argv);
     const int error = errno;
     if (write(report_fd, &error, sizeof error) < 0) _exit(127);

@@ -15,6 +15,7 @@
 #include "html_page.h"
 #include "options.h"
 #include "png.h"
+#include "raytracer/shown.h"
 #include "report.h"
 #include "scene_grading.h"
 
@@ -119,8 +120,9 @@ int complete_options(grade::Options& options, const char* argv0) {
 }
 
 // Why the --html page may not be written where asked, found before any scene is graded:
-// it would replace a scene or a key being graded, the program under test, a
-// write-protected file, or something that is not a file. Empty to go on.
+// it would replace a scene or a key being graded, any file of the scene or key folder
+// (those --only leaves out too), the program under test, a write-protected file, or
+// something that is not a file. Empty to go on.
 std::string html_refusal(const grade::Options& options, const std::vector<fs::path>& scenes) {
     std::error_code ec;
     const fs::file_status status = fs::status(options.html, ec);
@@ -132,6 +134,9 @@ std::string html_refusal(const grade::Options& options, const std::vector<fs::pa
         if (is(scene)) return page + " is a scene being graded";
         if (is(grade::key_for(options.keys, scene))) return page + " is a key being graded";
     }
+    const fs::path folder = fs::absolute(options.html, ec).parent_path();
+    if (fs::equivalent(folder, options.scenes, ec)) return page + " is a file of the scene folder";
+    if (fs::equivalent(folder, options.keys, ec)) return page + " is a file of the key folder";
     if (is(options.raytracer)) return page + " is the program being graded";
     if ((status.permissions() & fs::perms::owner_write) == fs::perms::none)
         return page + " is write-protected";
@@ -239,7 +244,10 @@ int main(int argc, char** argv) {
     } catch (const std::exception& e) {
         std::cerr << "raytracer-grade: error: " << e.what() << "\n";
     }
-    grade::remove_folder(scratch);
+    if (!grade::remove_folder(scratch))
+        std::cerr << "raytracer-grade: warning: the scratch folder "
+                  << rt::shown(scratch.u8string(), rt::kMaxShownPath)
+                  << " could not be removed in full; remove it by hand\n";
     if (const int signal = grade::interrupting_signal(); signal != 0) {
         std::cerr << "raytracer-grade: interrupted; the render was stopped and the scratch folder removed\n";
         std::signal(signal, SIG_DFL);

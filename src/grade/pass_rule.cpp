@@ -34,6 +34,10 @@ PixelVerdict pixel_verdict(const rt::Image& key, const rt::Image& got, int x, in
 
 Judgement judge(const std::string& key_name, const rt::Image& key, const rt::Image& got) {
     Judgement j;
+    if (got.width != key.width || got.height != key.height || got.rgb.size() != key.rgb.size()) {
+        j.differing = j.unexplained = static_cast<long long>(key.width) * key.height;  // not comparable
+        return j;
+    }
     const std::vector<AmbiguousPixel> ambiguous = ambiguous_pixels_of(key_name);
     for (int y = 0; y < key.height; ++y) {
         for (int x = 0; x < key.width; ++x) {

@@ -32,7 +32,12 @@ void print_header() {
 std::string describe_differences(const Judgement& j) {
     if (j.differing == 0) return "identical to the key";
     std::string text = plural(j.differing, "pixel differs", "pixels differ") + " from the key";
-    if (j.truncation_steps > 0) text += "; " + std::to_string(j.truncation_steps) + " by one level (allowed)";
+    if (j.too_many_steps())
+        text += "; " + std::to_string(j.truncation_steps) + " by one level, more than the " +
+                std::to_string(kMaxTruncationSteps) +
+                " truncation steps allowed (a systematic difference: rounding, not truncating?)";
+    else if (j.truncation_steps > 0)
+        text += "; " + std::to_string(j.truncation_steps) + " by one level (allowed)";
     if (j.ambiguous > 0) text += "; " + std::to_string(j.ambiguous) + " known ambiguous (allowed)";
     if (j.unexplained > 0) text += "; " + std::to_string(j.unexplained) + " unexplained";
     return text;
@@ -54,8 +59,10 @@ void print_scene(const SceneResult& r, const std::string& picture) {
         const Judgement& j = r.judgement;
         const Box& b = j.unexplained_box;
         std::printf("    %s, largest %d levels\n", describe_differences(j).c_str(), j.largest_difference);
-        std::printf("    the unexplained pixels lie in x %d..%d, y %d..%d (column, row from the top-left)\n",
-                    b.left, b.right, b.top, b.bottom);
+        if (!b.empty())
+            std::printf(
+                "    the unexplained pixels lie in x %d..%d, y %d..%d (column, row from the top-left)\n",
+                b.left, b.right, b.top, b.bottom);
         for (const PixelDifference& d : j.first_unexplained)
             std::printf("    (%d, %d): key %s, got %s\n", d.x, d.y, rgb(d.key).c_str(), rgb(d.got).c_str());
         if (j.unexplained > static_cast<long long>(j.first_unexplained.size()))

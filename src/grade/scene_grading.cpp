@@ -19,12 +19,21 @@ namespace fs = std::filesystem;
 namespace grade {
 namespace {
 
+// The first non-empty line among the first kStderrRead bytes of a run's stderr: a program
+// that writes gigabytes without a newline costs the grader no more than that.
+constexpr std::size_t kStderrRead = std::size_t{64} << 10;
 std::string first_line_of(const fs::path& file) {
     std::ifstream in(file, std::ios::binary);
-    std::string line;
-    while (std::getline(in, line)) {
+    std::string text(kStderrRead, '\0');
+    in.read(text.data(), static_cast<std::streamsize>(text.size()));
+    text.resize(static_cast<std::size_t>(in.gcount()));
+    for (std::size_t start = 0; start < text.size();) {
+        std::size_t end = text.find('\n', start);
+        if (end == std::string::npos) end = text.size();
+        std::string line = text.substr(start, end - start);
         if (!line.empty() && line.back() == '\r') line.pop_back();
         if (!line.empty()) return rt::escaped(line, 200);  // no escape sequence reaches the terminal
+        start = end + 1;
     }
     return {};
 }
@@ -58,6 +67,27 @@ std::string describe_failed_run(const ChildOutcome& run, const Options& options,
            (said.empty() ? " and said nothing on stderr" : ": " + said);
 }
 
+// What a file type other than a regular file or a folder is, for a message; empty where
+// nothing is there.
+std::string not_a_file(fs::file_type type) {
+    switch (type) {
+        case fs::file_type::symlink:
+            return "a symbolic link to no regular file";
+        case fs::file_type::fifo:
+            return "a FIFO";
+        case fs::file_type::socket:
+            return "a socket";
+        case fs::file_type::block:
+        case fs::file_type::character:
+            return "a device";
+        case fs::file_type::not_found:
+        case fs::file_type::none:
+            return {};
+        default:
+            return "something other than a file";
+    }
+}
+
 // The files a run left in its folder, for the student who named the output wrongly.
 std::string files_in(const fs::path& folder) {
     std::vector<std::string> names;
@@ -88,8 +118,12 @@ std::string read_output(const fs::path& folder, const std::string& output_name, 
     const fs::path output = folder / name;
     std::error_code ec;
     if (fs::is_directory(output, ec)) return "wrote a folder named " + output_name + " (OUTPUT of the scene)";
-    if (!fs::is_regular_file(output, ec))
+    if (!fs::is_regular_file(output, ec)) {
+        const std::string what = not_a_file(fs::symlink_status(output, ec).type());
+        if (!what.empty())
+            return "wrote " + what + " named " + output_name + " (OUTPUT of the scene), not a file";
         return "wrote nothing named " + output_name + " (OUTPUT of the scene); " + files_in(folder);
+    }
     char magic[2] = {0, 0};
     std::ifstream(output, std::ios::binary).read(magic, 2);
     if (magic[0] == 'P' && magic[1] == '3') return "P3 written; the course requires P6";
@@ -101,13 +135,21 @@ std::string read_output(const fs::path& folder, const std::string& output_name, 
                std::to_string(key.width) + "x" + std::to_string(key.height);
     std::uint64_t bytes_after = 0;
     if (error.empty() && rt::read_ppm(output.u8string(), image, error, &bytes_after)) {
+        // Read twice (its size, then the file): a program that left something running
+        // may have replaced it in between.
+        if (image.width != key.width || image.height != key.height)
+            return "wrote " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+                   ", the key is " + std::to_string(key.width) + "x" + std::to_string(key.height);
         if (bytes_after > 0)
             notes.push_back(rt::plural(static_cast<long long>(bytes_after), "byte", "bytes") +
                             " after the pixels, where a P6 file ends");
         return {};
     }
-    const std::size_t at = error.find(output.u8string());
-    if (at != std::string::npos) error.replace(at, output.u8string().size(), output_name);
+    // The file as the scene names it, not the scratch folder's path to it.
+    const std::string scratch_path = rt::shown(output.u8string(), rt::kMaxShownPath);
+    const std::size_t at = error.find(scratch_path);
+    if (at != std::string::npos)
+        error.replace(at, scratch_path.size(), rt::shown(output_name, rt::kMaxShownPath));
     return error;
 }
 
@@ -124,15 +166,32 @@ void note_if_slow(SceneResult& result) {
 
 }  // namespace
 
-void remove_folder(const fs::path& folder) {
+namespace {
+// Gives the owner every permission on each folder under folder (not through symbolic
+// links), so that what a run made write-protected ("chmod 500 sub", a copy of a
+// read-only folder) can be removed.
+void make_removable(const fs::path& folder) {
+    std::error_code ec, ignored;
+    fs::permissions(folder, fs::perms::owner_all, fs::perm_options::add, ignored);
+    // Each folder is met before it is entered, so its permissions come first.
+    for (auto it = fs::recursive_directory_iterator(folder, ec);
+         !ec && it != fs::recursive_directory_iterator(); it.increment(ec))
+        if (it->symlink_status(ignored).type() == fs::file_type::directory)
+            fs::permissions(it->path(), fs::perms::owner_all, fs::perm_options::add, ignored);
+}
+}  // namespace
+
+bool remove_folder(const fs::path& folder) {
     // On Windows a file can stay locked for a moment after its program ended (a virus
     // scanner, Wine's debugger after a crash): a few tries, then it is left for the end.
     std::error_code ec;
     for (int attempt = 0; attempt < 25; ++attempt) {
         fs::remove_all(folder, ec);
-        if (!ec) return;
+        if (!ec) return true;
+        if (attempt == 0) make_removable(folder);
         std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
+    return false;
 }
 
 fs::path key_for(const fs::path& keys, const fs::path& scene) {

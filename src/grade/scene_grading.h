@@ -29,8 +29,9 @@ struct SceneResult {
 // The key of testName.txt is keyName.ppm (the course's naming); of other.txt, other.ppm.
 std::filesystem::path key_for(const std::filesystem::path& keys, const std::filesystem::path& scene);
 
-// Removes the folder and all in it, trying again for half a second when a file is locked.
-void remove_folder(const std::filesystem::path& folder);
+// Removes the folder and all in it, write-protected folders in it too, trying again for
+// half a second when a file is locked; false when it could not.
+bool remove_folder(const std::filesystem::path& folder);
 
 // scratch is a folder of the grader's own: it is emptied and used for this scene.
 SceneResult grade_scene(const std::filesystem::path& scene, const Options& options,

@@ -13,10 +13,18 @@
 //   lax_header  the key under "600abc 600junk", which a PPM reader refuses
 //   straggler   the key, leaving a process running (POSIX; its pid to FAKE_RENDERER_PID_FILE)
 //   trailing    the key with 5 bytes after its pixels
+//   dozen_steps the key with 12 pixels one level off, the most the rule allows
+//   sparse_tail the key with 64 GiB after its pixels (sparse: no disk)
+//   endless_comment  "P6\n#" and a comment of 64 GiB (sparse)
+//   waits_for_enter  the key, then reads standard input to its end
+//   endless_stderr   (POSIX) 64 GiB of stderr without a newline (sparse), status 1
+//   fifo_output      (POSIX) a FIFO at the output's name
+//   readonly_folder  (POSIX) the key, and a write-protected folder with a file in it
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <iterator>
@@ -28,6 +36,7 @@
 #ifdef _WIN32
 #include <windows.h>
 #else
+#include <sys/stat.h>
 #include <unistd.h>
 #endif
 
@@ -36,6 +45,10 @@
 #endif
 
 namespace {
+
+// Bytes that a sparse file holds without disk: more than a grader could read in its
+// tests' time limit (about 2.5 s a GB).
+constexpr std::uintmax_t kSparseBytes = std::uintmax_t{64} << 30;
 
 struct Image {
     int width = 0, height = 0;
@@ -138,6 +151,13 @@ int main(int argc, char** argv) {
         for (;;) std::this_thread::sleep_for(std::chrono::seconds(1));
     }
     if (mode == "segfault") crash();
+#ifndef _WIN32
+    if (mode == "endless_stderr") {
+        if (ftruncate(2, static_cast<off_t>(kSparseBytes)) != 0) return 8;
+        return 1;
+    }
+    if (mode == "fifo_output") return mkfifo(scene_output(argv[1]).c_str(), 0644) == 0 ? 0 : 8;
+#endif
     if (mode == "exit1") {
         std::cerr << "fake: error: cannot open the scene file\nsecond line\n";
         return 1;
@@ -175,6 +195,16 @@ int main(int argc, char** argv) {
     }
     if (mode == "one_level")
         for (std::uint8_t& v : image.rgb) v = static_cast<std::uint8_t>(v == 255 ? 254 : v + 1);
+    if (mode == "dozen_steps")
+        for (std::size_t x = 0; x < 12; ++x) {  // row 300, columns 0-11, red
+            std::uint8_t& red = image.rgb[3 * (static_cast<std::size_t>(image.width) * 300 + x)];
+            red = static_cast<std::uint8_t>(red == 255 ? 254 : red + 1);
+        }
+    if (mode == "endless_comment") {
+        std::ofstream(output, std::ios::binary) << "P6\n#";
+        std::filesystem::resize_file(output, kSparseBytes);
+        return 0;
+    }
     if (mode == "wrong_size") image = top_left_half(image);
     if (mode == "shifted") image = shifted_right(image);
     if (mode == "lax_header") {
@@ -188,5 +218,17 @@ int main(int argc, char** argv) {
     else
         write_p6(mode == "wrong_name" ? "a.ppm" : output, image);
     if (mode == "trailing") std::ofstream(output, std::ios::binary | std::ios::app) << "junk\n";
+    if (mode == "sparse_tail")
+        std::filesystem::resize_file(output, std::filesystem::file_size(output) + kSparseBytes);
+    if (mode == "waits_for_enter")
+        while (std::cin.get() != EOF) {
+        }
+#ifndef _WIN32
+    if (mode == "readonly_folder") {
+        std::filesystem::create_directory("sub");
+        std::ofstream("sub/f") << "kept\n";
+        chmod("sub", 0500);
+    }
+#endif
     return 0;
 }

@@ -2,7 +2,8 @@
 # The programs are built always (clang-tidy reads every source); the tests need the course
 # scenes and keys, as the golden tests do, and are left out where those are absent.
 set(fake_modes black pixel64 one_level hang segfault exit1 wrong_size wrong_name p3 shifted huge_header escapes lax_header
-               straggler trailing)
+               straggler trailing dozen_steps sparse_tail endless_comment waits_for_enter endless_stderr fifo_output
+               readonly_folder)
 foreach(mode ${fake_modes})
   add_executable(fake_${mode} grade/fake_renderer.cpp)
   target_compile_definitions(fake_${mode} PRIVATE FAKE_MODE="${mode}")
@@ -17,7 +18,9 @@ if(NOT WIN32)
   target_link_libraries(grade_interrupt PRIVATE raytracer_warnings)
   target_compile_definitions(grade_interrupt PRIVATE RAYTRACER_GRADE="$<TARGET_FILE:raytracer-grade>"
                              FAKE_HANG="$<TARGET_FILE:fake_hang>" FAKE_ONE_LEVEL="$<TARGET_FILE:fake_one_level>"
-                             FAKE_STRAGGLER="$<TARGET_FILE:fake_straggler>" COURSE_SCENES="${course_scene_dir}")
+                             FAKE_STRAGGLER="$<TARGET_FILE:fake_straggler>"
+                             FAKE_WAITS_FOR_ENTER="$<TARGET_FILE:fake_waits_for_enter>"
+                             FAKE_READONLY_FOLDER="$<TARGET_FILE:fake_readonly_folder>" COURSE_SCENES="${course_scene_dir}")
 endif()
 if(NOT EXISTS "${course_scene_dir}/testShadow.txt")
   return()
@@ -43,13 +46,16 @@ else()
 endif()
 grade_test(black black 1 "testShadow|FAIL   0/2|359998 pixels differ from the key; 8 by one level (allowed); 2 known ambiguous (allowed); 359988 unexplained, largest 255 levels|the unexplained pixels lie in x 0..599, y 0..599|(0, 0): key 255 255 255, got 0 0 0|(4, 0): key 255 255 255, got 0 0 0|... and 359983 more|marks 0/2: 0 of 1 scene passes; 1 differs beyond the rule: FAIL" --only testShadow)
 grade_test(pixel64 pixel64 1 "1 pixel differs from the key; 1 unexplained, largest 64 levels|the unexplained pixels lie in x 300..300, y 200..200|(300, 200): key 44 0 0, got 108 0 0|marks 0/2" --only testIllum)
-grade_test(one-level one_level 0 "testShadow              360000           0|marks 24/24: all 12 scenes pass: PASS")
+# A dozen pixels one level off pass; every pixel one level off (rounding, not truncating)
+# does not.
+grade_test(dozen-steps dozen_steps 0 "testShadow                  12           0|marks 24/24: all 12 scenes pass: PASS")
+grade_test(one-level one_level 1 "testShadow              360000           0|360000 pixels differ from the key; 360000 by one level, more than the 12 truncation steps allowed|marks 0/24: 0 of 12 scenes pass; 12 differ beyond the rule: FAIL")
 grade_test(hang hang 1 "still running after 1 s (--timeout): killed|marks 0/2" --timeout 1 --only testAmbient)
 grade_test(segfault segfault 1 "testSample|${segfault_message}|marks 0/24: 0 of 12 scenes pass; 12 gave no image to compare: FAIL")
 grade_test(exit1 exit1 1 "exited with status 1: fake: error: cannot open the scene file|marks 0/2" --only testParsing)
 grade_test(wrong-size wrong_size 1 "wrote 300x300, the key is 600x600|marks 0/2" --only testDiffuse)
 grade_test(wrong-name wrong_name 1 "wrote nothing named testSample.ppm (OUTPUT of the scene); it wrote: a.ppm|marks 0/2" --only testSample)
-grade_test(shifted shifted 1 "19950 pixels differ from the key; 8620 by one level (allowed); 4 known ambiguous (allowed); 11326 unexplained|the unexplained pixels lie in x 149..455, y 146..451|(412, 146): key 64 0 0, got 255 255 255" --only testShadow)
+grade_test(shifted shifted 1 "19950 pixels differ from the key; 8620 by one level, more than the 12 truncation steps allowed (a systematic difference: rounding, not truncating?); 4 known ambiguous (allowed); 11326 unexplained|the unexplained pixels lie in x 149..455, y 146..451|(412, 146): key 64 0 0, got 255 255 255" --only testShadow)
 grade_test(p3 p3 1 "P3 written; the course requires P6|marks 0/2" --only testBehind)
 
 # The pictures: --diff-dir writes one PNG per failing scene, --html one page showing them.
@@ -66,13 +72,22 @@ unset(GRADE_EXTRA)
 # Ways a renderer can go wrong that the grader must neither trust nor pass to the terminal.
 grade_test(trailing-bytes trailing 0 "note: 5 bytes after the pixels, where a P6 file ends|marks 2/2" --only testShadow)
 grade_test(huge-header huge_header 1 "wrote 30000x30000, the key is 600x600|marks 0/2" --only testShadow)
+# 64 GiB after the pixels or in a header comment (sparse files): counted from the file's
+# size, and refused past 64 KiB, not read (about 2.5 s a GB: far past the test's 120 s).
+grade_test(sparse-tail sparse_tail 0 "note: 68719476736 bytes after the pixels, where a P6 file ends|marks 2/2" --only testShadow)
+grade_test(endless-comment endless_comment 1 "'testShadow.ppm' has a header of over 64 KiB, expected a binary PPM (P6)|marks 0/2" --only testShadow)
+if(NOT WIN32)
+  # 64 GiB of stderr without a newline: its first 64 KiB read (escaped NUL bytes, cut).
+  grade_test(endless-stderr endless_stderr 1 "exited with status 1: \\x00\\x00|marks 0/2" --only testShadow)
+  grade_test(fifo-output fifo_output 1 "wrote a FIFO named testShadow.ppm (OUTPUT of the scene), not a file|marks 0/2" --only testShadow)
+endif()
 # (no brackets in the expected texts: CMake's lists do not split inside them)
 grade_test(escapes escapes 1 "exited with status 3: \\x1b|mred\\x1b|m \\x07|marks 0/2" --only testShadow)
 
 # The command line: a scene folder with a trailing separator, options as --name=value and
 # --only with the file's name, each option at most once, one scene folder.
 set(GRADE_SCENES "${course_scene_dir}/")
-grade_test(trailing-separator one_level 0 "marks 2/2: the scene passes: PASS" --only=testShadow.txt --timeout=60)
+grade_test(trailing-separator dozen_steps 0 "marks 2/2: the scene passes: PASS" --only=testShadow.txt --timeout=60)
 set(GRADE_SCENES "${course_scene_dir}")
 grade_test(option-twice one_level 2 "--only given twice" --only testShadow --only testAmbient)
 grade_test(two-folders one_level 2 "two scene folders" ${course_scene_dir})
@@ -85,6 +100,12 @@ set(GRADE_EXTRA -DCLEAN=${grade_out}/refuse "-DCOPY=${course_scene_dir}/testShad
 set(GRADE_SCENES "${grade_out}/refuse/scenes")
 grade_test(html-onto-a-scene one_level 2 "is a scene being graded, expected a new or replaceable page"
            --html ${grade_out}/refuse/scenes/testShadow.txt)
+# ... or any other file of the scene or key folder, which --only leaves out.
+set(GRADE_EXTRA -DCLEAN=${grade_out}/refuse-other "-DCOPY=${course_scene_dir}/testShadow.txt|${grade_out}/refuse-other/scenes|${course_scene_dir}/testAmbient.txt|${grade_out}/refuse-other/scenes|${course_scene_dir}/../keys/keyShadow.ppm|${grade_out}/refuse-other/keys"
+                -DPAGE=${grade_out}/refuse-other/scenes/testAmbient.txt "-DPAGE_EXPECT=OUTPUT")
+set(GRADE_SCENES "${grade_out}/refuse-other/scenes")
+grade_test(html-onto-another-scene one_level 2 "is a file of the scene folder, expected a new or replaceable page"
+           --only testShadow --html ${grade_out}/refuse-other/scenes/testAmbient.txt)
 set(GRADE_SCENES "${course_scene_dir}")
 unset(GRADE_EXTRA)
 
@@ -92,7 +113,7 @@ unset(GRADE_EXTRA)
 # graded (a 6.3 GB claim costs no 6.3 GB; 2^31 x 1 pixels is refused from the header).
 set(GRADE_EXTRA -DCLEAN=${grade_out}/bad-keys "-DCOPY=${course_scene_dir}/testShadow.txt|${grade_out}/bad-keys/scenes|${course_scene_dir}/testSample.txt|${grade_out}/bad-keys/scenes|${course_scene_dir}/testAmbient.txt|${grade_out}/bad-keys/scenes|${course_scene_dir}/../keys/keyShadow.ppm|${grade_out}/bad-keys/keys|${CMAKE_CURRENT_SOURCE_DIR}/grade/bad_keys/keySample.ppm|${grade_out}/bad-keys/keys|${CMAKE_CURRENT_SOURCE_DIR}/grade/bad_keys/keyAmbient.ppm|${grade_out}/bad-keys/keys")
 set(GRADE_SCENES "${grade_out}/bad-keys/scenes")
-grade_test(bad-keys one_level 1 "testSample                   -           -    0.000  FAIL   0/2  no usable key: '|keySample.ppm' is a P6 of 2147483648x1 pixels, more than the 2^31 - 1 read|keyAmbient.ppm' is shorter than its header says|testShadow              360000           0|marks 2/6: 1 of 3 scenes pass; 2 without a readable scene or key to grade by: FAIL")
+grade_test(bad-keys dozen_steps 1 "testSample                   -           -    0.000  FAIL   0/2  no usable key: '|keySample.ppm' is a P6 of 2147483648x1 pixels, more than the 2^31 - 1 read|keyAmbient.ppm' is shorter than its header says|testShadow                  12           0|marks 2/6: 1 of 3 scenes pass; 2 without a readable scene or key to grade by: FAIL")
 # A renderer's header that a PPM reader refuses is not read for its numbers.
 set(GRADE_SCENES "${course_scene_dir}")
 unset(GRADE_EXTRA)

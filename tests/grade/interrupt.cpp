@@ -10,6 +10,7 @@
 #include <cerrno>
 #include <chrono>
 #include <csignal>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -85,13 +86,27 @@ bool is_zombie(pid_t pid) {
     return name_end != std::string::npos && name_end + 2 < line.size() && line[name_end + 2] == 'Z';
 }
 
+// How grade_shadow() runs the grader besides: its standard input, and whether as the
+// user nobody where this test runs as root (root removes anything, write-protected or not).
+struct GraderRun {
+    int stdin_fd = -1;  // -1: this process's
+    bool as_nobody = false;
+};
+constexpr uid_t kNobody = 65534;
+constexpr int kCannotDropPrivileges = 126;  // the grader's child exit status where it could not
+
 // Runs the grader on testShadow with the renderer, its standard output `stdout_fd` and
 // TMPDIR `temporary`; returns its wait status.
-int grade_shadow(const char* renderer, int stdout_fd, const fs::path& temporary) {
+int grade_shadow(const char* renderer, int stdout_fd, const fs::path& temporary, GraderRun run = {}) {
     const pid_t grader = fork();
     if (grader == 0) {
         setenv("TMPDIR", temporary.c_str(), 1);
         dup2(stdout_fd, 1);
+        if (run.stdin_fd >= 0) dup2(run.stdin_fd, 0);
+        if (run.as_nobody && geteuid() == 0 &&
+            (setgid(kNobody) != 0 || setuid(kNobody) != 0 || access(RAYTRACER_GRADE, X_OK) != 0 ||
+             access(renderer, X_OK) != 0 || access(COURSE_SCENES "/testShadow.txt", R_OK) != 0))
+            _exit(kCannotDropPrivileges);
         execl(RAYTRACER_GRADE, RAYTRACER_GRADE, "--raytracer", renderer, "--only", "testShadow",
               COURSE_SCENES, static_cast<char*>(nullptr));
         _exit(127);
@@ -158,4 +173,41 @@ TEST(what_a_render_leaves_running_is_stopped) {
     }
     CHECK(gone);
     if (!gone && straggler > 0) kill(straggler, SIGKILL);
+}
+
+// A renderer that waits for Enter at its end (as student programs do) gets end of file
+// at once: its standard input is not the grader's, which here stays open and silent.
+TEST(a_render_that_reads_standard_input_gets_its_end) {
+    const Root root;
+    int input[2];
+    CHECK_EQ(pipe(input), 0);
+    const int null = open("/dev/null", O_WRONLY);
+    GraderRun run;
+    run.stdin_fd = input[0];
+    const int status = grade_shadow(FAKE_WAITS_FOR_ENTER, null, root.path / "tmp", run);
+    close(null);
+    close(input[0]);
+    close(input[1]);
+    CHECK(WIFEXITED(status) && WEXITSTATUS(status) == 0);  // the key itself, not a timeout
+    CHECK(fs::is_empty(root.path / "tmp"));
+}
+
+// What a render made write-protected (a folder with mode 500 and a file in it) is
+// removed with the scratch folder, by a grader that is not root.
+TEST(a_write_protected_folder_a_render_leaves_is_removed) {
+    const Root root;
+    fs::permissions(root.path, fs::perms::all);  // nobody makes its scratch folder there
+    fs::permissions(root.path / "tmp", fs::perms::all);
+    const int null = open("/dev/null", O_WRONLY);
+    GraderRun run;
+    run.as_nobody = true;
+    const int status = grade_shadow(FAKE_READONLY_FOLDER, null, root.path / "tmp", run);
+    close(null);
+    if (WIFEXITED(status) && WEXITSTATUS(status) == kCannotDropPrivileges) {
+        std::fprintf(stderr,
+                     "note: the grader could not run as nobody here (the build's folders); not tried\n");
+        return;
+    }
+    CHECK(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+    CHECK(fs::is_empty(root.path / "tmp"));
 }

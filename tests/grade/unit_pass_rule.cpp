@@ -29,9 +29,24 @@ TEST(identical_images_pass) {
     CHECK(j.passed() && j.differing == 0);
 }
 
-TEST(one_level_in_every_channel_everywhere_passes) {
+TEST(one_level_in_every_channel_everywhere_fails) {  // rounding instead of truncating
     const grade::Judgement j = grade::judge("keyShadow", grey(6, 5, 100), grey(6, 5, 101));
-    CHECK(j.passed() && j.differing == 30 && j.truncation_steps == 30);
+    CHECK(!j.passed() && j.too_many_steps() && j.differing == 30 && j.truncation_steps == 30);
+    CHECK(j.unexplained == 0 && j.unexplained_box.empty());
+}
+
+TEST(a_dozen_pixels_one_level_off_pass_and_thirteen_fail) {
+    rt::Image got = grey(20, 20, 50);
+    for (int x = 0; x < 12; ++x) set(got, x, 4, x % 3, x % 2 == 0 ? 51 : 49);
+    CHECK(grade::judge("keyShadow", grey(20, 20, 50), got).passed());
+    set(got, 0, 5, 1, 51);
+    const grade::Judgement j = grade::judge("keyShadow", grey(20, 20, 50), got);
+    CHECK(!j.passed() && j.truncation_steps == 13 && j.unexplained == 0);
+}
+
+TEST(an_image_of_another_size_is_not_compared) {
+    const grade::Judgement j = grade::judge("keyShadow", grey(4, 4, 9), grey(2, 2, 9));
+    CHECK(!j.passed() && j.unexplained == 16);
 }
 
 TEST(two_levels_in_one_channel_of_one_pixel_fails_and_is_located) {
