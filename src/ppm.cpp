@@ -21,7 +21,10 @@ namespace rt {
 
 P6Writer::P6Writer(PendingFile& file, int width, int height)
     : file_(file), expected_(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3) {
-    if (!file_.error().empty()) return;
+    if (!file_.error().empty()) {
+        failed_.store(true, std::memory_order_relaxed);
+        return;
+    }
     const std::string header = "P6\n" + std::to_string(width) + ' ' + std::to_string(height) + "\n255\n";
     file_.expect_size(header.size() + expected_);
     file_.write(header.data(), header.size());
@@ -31,6 +34,7 @@ void P6Writer::rows(const std::uint8_t* bytes, std::size_t size) {
     if (!file_.error().empty()) return;
     file_.write(bytes, size);
     written_ += size;
+    if (file_.write_failed()) failed_.store(true, std::memory_order_relaxed);
 }
 
 std::string P6Writer::commit() {

@@ -58,6 +58,8 @@ public:
     // Appends the bytes (only when error() is empty); a failure is reported by commit().
     // (write() and expect_size() are the platform's: output_file_posix.cpp, _windows.cpp.)
     void write(const void* data, std::size_t size);
+    // Whether a write has failed: no later byte is written, and commit() says why.
+    bool write_failed() const { return write_error_ != 0; }
     // Puts the complete file in place. Returns an empty string on success, else what
     // went wrong; nothing is left behind either way.
     std::string commit();

@@ -4,6 +4,7 @@
 // write through a PendingFile (output_file.h), put in place only when complete.
 #pragma once
 
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -22,11 +23,13 @@ class P6Writer final : public RowSink {
 public:
     P6Writer(PendingFile& file, int width, int height);
     void rows(const std::uint8_t* bytes, std::size_t size) override;
+    bool failed() const override { return failed_.load(std::memory_order_relaxed); }
     std::string commit();
 
 private:
     PendingFile& file_;
     std::size_t expected_ = 0, written_ = 0;  // pixel bytes
+    std::atomic<bool> failed_{false};         // file_'s error, for the render's threads
 };
 
 // Writes a P6 image into a pending file (its error() must be empty) and commits it.

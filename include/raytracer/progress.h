@@ -30,6 +30,7 @@ public:
     // enabled = false passes rows through only.
     ProgressSink(RowSink& inner, int total_rows, bool enabled);
     void rows(const std::uint8_t* bytes, std::size_t size) override { inner_.rows(bytes, size); }
+    bool failed() const override { return inner_.failed(); }
     void rows_finished(int count) override;
     void rendering() override;
     // Erases the line, if one was drawn.

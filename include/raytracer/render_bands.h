@@ -36,7 +36,7 @@ void render_bands(const Scene& scene, RowSink& sink, unsigned threads, MakeScrat
             ring.reserve(end);
             std::uint8_t* out[kBandRows] = {};
             for (int row = r; row < end; ++row) out[row - r] = ring.row(row);
-            draw(r, end - r, out, scratch);
+            if (!ring.sink_failed()) draw(r, end - r, out, scratch);
             for (int row = r; row < end; ++row) ring.finish(row);
         }
     };

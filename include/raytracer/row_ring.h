@@ -48,6 +48,9 @@ public:
     // After every row is finished: gives the sink the rest.
     void flush();
 
+    // Whether the sink takes no more bytes (RowSink::failed()): the rows still to come
+    // need not be drawn.
+    bool sink_failed() const { return sink_.failed(); }
     int ring_rows() const { return ring_rows_; }
     int block_rows() const { return block_rows_; }
 

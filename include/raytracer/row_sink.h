@@ -23,6 +23,11 @@ public:
     // progress display that would otherwise wait for the row's end. Called by any of the
     // render's threads at any time, beside any other call; the default does nothing.
     virtual void rendering() {}
+    // Whether the sink takes no more bytes (a write failed): the rows still to come are
+    // then not drawn, only counted through (render_bands.h, render_flat_sweep.cpp), so a
+    // full disk ends the run at once rather than after the whole render. Called by any
+    // of the render's threads at any time; the default is false.
+    virtual bool failed() const { return false; }
 
 protected:
     RowSink() = default;

@@ -158,9 +158,11 @@ public:
             ring_.reserve(end);
             Band band;
             band.first_row = r, band.end_row = end, band.band_lo = scene_.columns;
-            work.seen.clear();
-            for (int row = r; row < end; ++row) eye_hits(row, band, work);
-            shade(band, work);
+            if (!ring_.sink_failed()) {
+                work.seen.clear();
+                for (int row = r; row < end; ++row) eye_hits(row, band, work);
+                shade(band, work);
+            }
             for (int f = r; f < end; ++f) ring_.finish(f);
             after_band(end - 1);
         }
