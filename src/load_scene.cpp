@@ -54,7 +54,7 @@ Scene load_scene(const std::string& path, unsigned threads_wanted) {
         if (!opened && error == EACCES)
             return SceneError(
                 path, 0, "cannot be opened for reading: permission denied, expected a readable scene file");
-        if (!opened && !std::filesystem::exists(path, ec))
+        if (!opened && !std::filesystem::exists(path, ec) && !ec)  // ec: ELOOP, EACCES on the way
             return SceneError(path, 0, "does not exist, expected a scene file");
         return opened
                    ? SceneError(path, 0, "could not be read" + cause + ", expected a readable scene file")

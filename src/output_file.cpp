@@ -48,6 +48,11 @@ std::string cannot_create(const std::string& name, const fs::path& folder, int e
     std::error_code ec;
     const std::string start = shown(name, kMaxShownPath) + " cannot be created: ";
     if (error == ENAMETOOLONG) return start + "the name or path is too long for the system";
+    // exists() fails, rather than says no, where the path cannot be followed: a folder
+    // on the way without search permission, a loop of symbolic links.
+    if (!fs::exists(folder, ec) && ec)
+        return start + "its folder " + shown(folder.u8string(), kMaxShownPath) + " cannot be reached: " +
+               (ec.value() == EACCES ? std::string("permission denied") : ec.message());
     if (!fs::exists(folder, ec))
         return start + "its folder " + shown(folder.u8string(), kMaxShownPath) + " does not exist";
     if (!fs::is_directory(folder, ec))

@@ -16,6 +16,7 @@
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -284,6 +285,31 @@ TEST(a_file_size_limit_is_a_failed_write) {
     }
 }
 
+// A write that fails ends the render: the rows still to come are not drawn, so a full
+// disk (here a file-size limit of 4 KiB) does not cost the whole render first. The
+// child's CPU time against the same render written in full, in one run.
+TEST(a_failed_write_ends_the_render) {
+    const Scratch folder;
+    write_bytes(folder.work / "slow.txt", slow_scene("out.ppm"));
+    auto cpu_seconds = [&folder](const Options& options, int status) {
+        rusage before{}, after{};
+        getrusage(RUSAGE_CHILDREN, &before);
+        CHECK_EQ(run(folder, {"slow.txt"}, options), status);
+        getrusage(RUSAGE_CHILDREN, &after);
+        auto seconds = [](const rusage& r) {
+            return static_cast<double>(r.ru_utime.tv_sec + r.ru_stime.tv_sec) +
+                   static_cast<double>(r.ru_utime.tv_usec + r.ru_stime.tv_usec) * 1e-6;
+        };
+        return seconds(after) - seconds(before);
+    };
+    const double whole = cpu_seconds(Options{}, 0);
+    Options limited;
+    limited.file_size_limit = 4096;
+    const double failed = cpu_seconds(limited, 3);
+    std::fprintf(stderr, "CPU time: written in full %.3f s, failed at 4 KiB %.3f s\n", whole, failed);
+    CHECK(failed * 4 < whole);
+}
+
 // The sanitizers reserve terabytes of address space: no limit can be set under them.
 #ifndef RT_SANITIZER_MAPS_TERABYTES
 // Memory runs out for 100,000 ellipsoids on a tiny image (the scene is read; the tree
@@ -519,6 +545,23 @@ TEST(output_naming_the_scene_through_a_link_is_refused) {
     CHECK_EQ(run(folder, {"scene.txt", "-o", "soft.ppm"}), 3);
     CHECK(captured_stderr(folder).find("-o 'soft.ppm' is the scene file itself") != std::string::npos);
     CHECK_EQ(read_bytes(folder.work / "scene.txt"), scene);
+}
+
+// A path that cannot be followed (a loop of symbolic links) is said to be so, not to be
+// missing: as a scene file, and as the folder of an output.
+TEST(a_loop_of_symbolic_links_is_not_called_missing) {
+    const Scratch folder;
+    write_bytes(folder.work / "scene.txt", small_scene("out.ppm"));
+    fs::create_symlink("loop", folder.work / "loop");
+    CHECK_EQ(run(folder, {"loop"}), 1);
+    std::string err = captured_stderr(folder);
+    CHECK(err.find("does not exist") == std::string::npos);
+    CHECK(err.find("loop: error: cannot be opened for reading: " + std::string(std::strerror(ELOOP))) !=
+          std::string::npos);
+    CHECK_EQ(run(folder, {"scene.txt", "-o", "loop/out.ppm"}), 3);
+    err = captured_stderr(folder);
+    CHECK(err.find("does not exist") == std::string::npos);
+    CHECK(err.find("its folder 'loop' cannot be reached") != std::string::npos);
 }
 
 // --help and --version into a full disk (or a closed stdout): exit 3 and one line, not a
