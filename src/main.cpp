@@ -22,6 +22,7 @@
 #include "raytracer/scene_error.h"
 #include "raytracer/scene_scale.h"
 #include "raytracer/shown.h"
+#include "raytracer/standard_streams.h"
 #include "raytracer/version.h"
 
 namespace {
@@ -112,6 +113,14 @@ int write_image(const rt::CommandLine& line, const rt::Scene& scene) {
                             rt::shown(output.path, rt::kMaxShownPath) +
                                 " is a terminal, expected a pipe or a file for a binary image");
     }
+    // -o - > f.ppm 2>&1 --progress: the progress line would be written into the image.
+    if (output.destination == rt::Destination::StandardOutput &&
+        line.progress == rt::CommandLine::Progress::Always && rt::standard_streams_are_one_file(1, 2)) {
+        return cannot_write(line.scene_file, scene, output,
+                            rt::shown(output.path, rt::kMaxShownPath) +
+                                " is also standard error, where --progress draws its line, expected "
+                                "another file for the image");
+    }
     // The file is created before the render, so that an unwritable OUTPUT is reported
     // before the render is spent on it; nothing of it is left on any error.
     rt::PendingFile file(output.path.c_str(), output.destination);
@@ -184,10 +193,12 @@ int main(int argc, char** argv) {
             std::fprintf(
                 stderr,
                 "raytracer.exe: error: out of memory rendering %s (RES %d %d, %s, %s), expected a "
-                "smaller scene\n",
+                "smaller scene%s\n",
                 shown_file.c_str(), size.columns, size.rows,
                 rt::plural(static_cast<long long>(size.ellipsoids), "ellipsoid", "ellipsoids").c_str(),
-                rt::plural(static_cast<long long>(size.lights), "light", "lights").c_str());
+                rt::plural(static_cast<long long>(size.lights), "light", "lights").c_str(),
+                // Each thread holds a band of rows: more threads than cores cost memory, not time.
+                line.threads > rt::available_cores() ? " or fewer --threads" : "");
         }
         return kOutOfMemory;
     } catch (const std::exception& e) {

@@ -12,6 +12,7 @@
 #include "raytracer/output_file.h"
 #include "raytracer/parser.h"
 #include "raytracer/shown.h"
+#include "raytracer/standard_streams.h"
 
 #ifdef _WIN32
 #ifndef NOMINMAX
@@ -33,51 +34,6 @@ namespace fs = std::filesystem;
 enum class Existing { Nothing, RegularFile, Folder, Other };
 
 #ifdef _WIN32
-// A file's identity whatever its names: volume and file index (hard links, case, 8.3 names).
-bool identity(const std::string& name, BY_HANDLE_FILE_INFORMATION& info) {
-    const HANDLE h = CreateFileW(fs::u8path(name).c_str(), FILE_READ_ATTRIBUTES,
-                                 FILE_SHARE_READ | FILE_SHARE_WRITE | FILE_SHARE_DELETE, nullptr,
-                                 OPEN_EXISTING, FILE_FLAG_BACKUP_SEMANTICS, nullptr);
-    if (h == INVALID_HANDLE_VALUE) return false;
-    const bool ok = GetFileInformationByHandle(h, &info) != 0;
-    CloseHandle(h);
-    return ok;
-}
-bool same_identity(const BY_HANDLE_FILE_INFORMATION& x, const BY_HANDLE_FILE_INFORMATION& y) {
-    return x.dwVolumeSerialNumber == y.dwVolumeSerialNumber && x.nFileIndexHigh == y.nFileIndexHigh &&
-           x.nFileIndexLow == y.nFileIndexLow;
-}
-
-bool same_file(const std::string& a, const std::string& b) {
-    BY_HANDLE_FILE_INFORMATION x{}, y{};
-    return identity(a, x) && identity(b, y) && same_identity(x, y);
-}
-
-// Whether standard input (stream 0), output (1) or error (2) is a file on disk, and which.
-bool stream_identity(int stream, BY_HANDLE_FILE_INFORMATION& info) {
-    const HANDLE handle = GetStdHandle(stream == 0   ? STD_INPUT_HANDLE
-                                       : stream == 1 ? STD_OUTPUT_HANDLE
-                                                     : STD_ERROR_HANDLE);
-    return handle != INVALID_HANDLE_VALUE && handle != nullptr && GetFileType(handle) == FILE_TYPE_DISK &&
-           GetFileInformationByHandle(handle, &info) != 0;
-}
-
-// Whether the standard stream is this file.
-bool standard_stream_is(int stream, const std::string& file) {
-    BY_HANDLE_FILE_INFORMATION x{}, y{};
-    return stream_identity(stream, x) && identity(file, y) && same_identity(x, y);
-}
-
-// Whether two standard streams are one file on disk.
-bool standard_streams_are_one_file(int a, int b) {
-    BY_HANDLE_FILE_INFORMATION x{}, y{};
-    return stream_identity(a, x) && stream_identity(b, y) && same_identity(x, y);
-}
-
-// A closed standard stream has no handle at all here: writing it fails and says so.
-bool standard_stream_is_folder(int /*stream*/) { return false; }
-std::string closed_stream_named(const std::string& /*path*/) { return {}; }
-
 // The folder's path with the links and junctions on the way resolved: the one the system
 // gives it once opened (some standard libraries' fs::canonical leaves links as they are
 // here). False where the folder cannot be opened.
@@ -166,51 +122,6 @@ Existing what_is_at(const std::string& path) {
     return status.type() == fs::file_type::regular ? Existing::RegularFile : Existing::Other;
 }
 #else
-// A file's identity whatever its names: device and inode (hard links, symbolic links, ./).
-bool same_identity(const struct stat& x, const struct stat& y) {
-    return x.st_dev == y.st_dev && x.st_ino == y.st_ino;
-}
-
-bool same_file(const std::string& a, const std::string& b) {
-    struct stat x {
-    }, y{};
-    return ::stat(a.c_str(), &x) == 0 && ::stat(b.c_str(), &y) == 0 && same_identity(x, y);
-}
-
-// Whether standard input (stream 0), output (1) or error (2) is this file.
-bool standard_stream_is(int stream, const std::string& file) {
-    struct stat x {
-    }, y{};
-    return ::fstat(stream, &x) == 0 && ::stat(file.c_str(), &y) == 0 && same_identity(x, y);
-}
-
-// Whether two standard streams are one regular file (not one terminal, say).
-bool standard_streams_are_one_file(int a, int b) {
-    struct stat x {
-    }, y{};
-    return ::fstat(a, &x) == 0 && ::fstat(b, &y) == 0 && S_ISREG(x.st_mode) && same_identity(x, y);
-}
-
-// Whether standard stream 0, 1 or 2 is a folder: closed at the start (main() opens it on /), or given so.
-bool standard_stream_is_folder(int stream) {
-    struct stat s {};
-    return ::fstat(stream, &s) == 0 && S_ISDIR(s.st_mode);
-}
-
-// Why -o cannot name this path, or empty: a link (/dev/stdout, /dev/fd/N) to a standard
-// stream that is closed, said so rather than "a folder" (the one main() holds it open on).
-std::string closed_stream_named(const std::string& path) {
-    const char* const names[] = {"input", "output", "error"};
-    struct stat s {};
-    for (const int stream : {0, 1, 2})
-        if (::lstat(path.c_str(), &s) == 0 && S_ISLNK(s.st_mode) && standard_stream_is_folder(stream) &&
-            standard_stream_is(stream, path))
-            return shown(path, kMaxShownPath) + " is standard " + names[stream] +
-                   ", which is closed (or a folder), expected " +
-                   (stream == 1 ? "a pipe or a file" : "another file");
-    return {};
-}
-
 // Whether the system refuses the path as too long (a name past its folder's limit, or a
 // path past the system's): said before the render, not when the image is put there.
 // The temporary's name in the same folder is asked too (a name of its length): the image
@@ -369,12 +280,17 @@ OutputChoice choose_output(const std::string& scene_output, const std::string* u
         return choice;
     }
     // Nor is a regular file that is standard input or error replaced, whoever names it:
-    // the one is read, the other carries the messages (a device such as /dev/null is
-    // written into as usual).
+    // the one is read, the other carries the messages; nor is a pipe that is standard
+    // input written (this process holds its reading end: a pipe's worth would block it
+    // for good). A device such as /dev/null is written into as usual.
+    std::error_code ec;
+    const fs::file_type type = fs::status(fs::u8path(choice.path), ec).type();
+    const bool pipe = type == fs::file_type::fifo || type == fs::file_type::socket;
     for (const auto& [stream, what] :
          {std::pair<int, const char*>{0, "standard input, which is read"},
           std::pair<int, const char*>{2, "standard error, where the messages go"}}) {
-        if (existing == Existing::RegularFile && standard_stream_is(stream, choice.path)) {
+        if ((existing == Existing::RegularFile || (stream == 0 && pipe)) &&
+            standard_stream_is(stream, choice.path)) {
             choice.refusal =
                 shown(choice.path, kMaxShownPath) + " is " + what + ", expected another file for the image";
             return choice;

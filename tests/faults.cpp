@@ -564,6 +564,47 @@ TEST(a_loop_of_symbolic_links_is_not_called_missing) {
     CHECK(err.find("its folder 'loop' cannot be reached") != std::string::npos);
 }
 
+// -o - > both.ppm 2>&1 --progress: the progress line would go into the image, so it is
+// refused before the render; without --progress nothing goes to stderr and the image is
+// whole.
+TEST(a_progress_line_into_the_image_is_refused) {
+    const Scratch folder;
+    write_bytes(folder.work / "scene.txt", small_scene("out.ppm"));
+    Options options;
+    options.stdout_fd = options.stderr_fd =
+        open((folder.work / "both.ppm").c_str(), O_WRONLY | O_CREAT, 0644);
+    CHECK(options.stdout_fd >= 0);
+    CHECK_EQ(run(folder, {"--progress", "-o", "-", "scene.txt"}, options), 3);
+    CHECK_EQ(read_bytes(folder.work / "both.ppm"),
+             std::string("raytracer.exe: error: -o '-' is also standard error, where --progress draws "
+                         "its line, expected another file for the image\n"));
+    CHECK(ftruncate(options.stdout_fd, 0) == 0 && lseek(options.stdout_fd, 0, SEEK_SET) == 0);
+    CHECK_EQ(run(folder, {"-o", "-", "scene.txt"}, options), 0);
+    close(options.stdout_fd);
+    CHECK_EQ(read_bytes(folder.work / "both.ppm").substr(0, 3), std::string("P6\n"));
+    CHECK_EQ(read_bytes(folder.work / "both.ppm").size(), std::size_t{30015});  // 100x100
+}
+
+// The pipe a scene comes in on is not written: this process holds its reading end, so
+// an image larger than the pipe would block it for good (-o /dev/stdin, /dev/fd/0).
+TEST(the_pipe_of_standard_input_is_not_an_output) {
+    for (const char* name : {"/dev/stdin", "/dev/fd/0"}) {
+        const Scratch folder;
+        int input[2];
+        CHECK_EQ(pipe(input), 0);
+        const std::string scene = small_scene("out.ppm");
+        CHECK_EQ(write(input[1], scene.data(), scene.size()), static_cast<ssize_t>(scene.size()));
+        close(input[1]);
+        Options options;
+        options.stdin_fd = input[0];
+        CHECK_EQ(run(folder, {"-", "-o", name}, options), 3);
+        close(input[0]);
+        CHECK(captured_stderr(folder).find(std::string("-o '") + name +
+                                           "' is standard input, which is read, expected another file") !=
+              std::string::npos);
+    }
+}
+
 // --help and --version into a full disk (or a closed stdout): exit 3 and one line, not a
 // silent success.
 TEST(help_that_cannot_be_written_is_an_error) {
