@@ -20,13 +20,13 @@
 namespace rt {
 namespace {
 
-// The handler reads only these, takes `phase` below by a compare-exchange, and calls
-// only unlink, write and _exit (and, on Windows, signal() to stay installed), which are
-// async-signal-safe. A path is copied into cleanup_path before cleanup_set is raised,
-// so the handler never sees half a path: the flags are lock-free atomics, stored with
-// release and loaded with acquire, as the handler may run on another thread than the
-// one that sets them (on Windows a thread of its own; elsewhere the main thread, while a
-// helper writes), where a fence for signals alone would not order the path before the flag.
+// The handlers read only these, take `phase` below by a compare-exchange, and call only
+// unlink, write and _exit (end_on_signal(): signal and raise; on Windows, signal() to
+// stay installed), which are async-signal-safe. A path is copied into cleanup_path before cleanup_set is
+// raised, so the handler never sees half a path: the flags are lock-free atomics, stored with release and
+// loaded with acquire, as the handler may run on another thread than the one that sets them (on Windows a
+// thread of its own; elsewhere the main thread, while a helper writes), where a fence for signals alone would
+// not order the path before the flag.
 static_assert(std::atomic<int>::is_always_lock_free, "a signal handler may use only lock-free atomics");
 constexpr std::size_t kMaxPath = 4096;
 char cleanup_path[kMaxPath];
@@ -58,6 +58,10 @@ enum Phase : int { kRunning, kHeld, kInterrupted };
 std::atomic<int> phase{kRunning};
 #ifndef _WIN32
 constexpr int kInterruptSignals[] = {SIGINT, SIGTERM, SIGHUP};
+// The other signals that end a process by default (Ctrl-\, a reader of stderr gone,
+// timers, the user's): they keep their default action and exit status (SIGQUIT's core,
+// SIGPIPE's silent 141), but the named temporary is removed first.
+constexpr int kEndingSignals[] = {SIGQUIT, SIGPIPE, SIGALRM, SIGUSR1, SIGUSR2, SIGVTALRM, SIGPROF, SIGXCPU};
 #endif
 
 void say(const char* text, std::size_t length) {
@@ -101,6 +105,17 @@ extern "C" void render_on_interrupt(int signal_number) {
     _exit(128 + signal_number);
 }
 
+#ifndef _WIN32
+extern "C" void end_on_signal(int signal_number) {
+    int running = kRunning;  // not once the image is being put in place
+    if (phase.compare_exchange_strong(running, kInterrupted) &&
+        cleanup_set.load(std::memory_order_acquire) != 0)
+        (void)unlink(cleanup_path);
+    (void)std::signal(signal_number, SIG_DFL);
+    (void)std::raise(signal_number);  // blocked in here: it ends the process once this returns
+}
+#endif
+
 }  // namespace
 
 // A signal ignored when the program started stays ignored (nohup, a shell's background
@@ -120,6 +135,14 @@ void install_interrupt_handlers() {
         struct sigaction before {};
         if (sigaction(s, nullptr, &before) == 0 && before.sa_handler == SIG_IGN) continue;
         (void)sigaction(s, &action, nullptr);
+    }
+    struct sigaction ending {};
+    ending.sa_handler = end_on_signal;
+    sigemptyset(&ending.sa_mask);
+    for (const int s : kEndingSignals) {
+        struct sigaction before {};
+        if (sigaction(s, nullptr, &before) == 0 && before.sa_handler == SIG_IGN) continue;
+        (void)sigaction(s, &ending, nullptr);
     }
     (void)std::signal(SIGXFSZ, SIG_IGN);
 #endif

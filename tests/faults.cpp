@@ -181,6 +181,27 @@ TEST(an_interrupted_render_leaves_nothing_and_exits_128_plus_the_signal) {
 
 // Started with SIGHUP and SIGTERM ignored (nohup, trap '' TERM), the render ignores them
 // too and completes; SIGINT, not ignored, still interrupts it.
+// Signals that end a process without a handler of ours (SIGUSR1, SIGALRM; Ctrl-\ and a
+// reader of stderr gone alike) end it as by default, but leave no named temporary.
+TEST(other_ending_signals_leave_no_temporary) {
+    for (const int signal_number : {SIGUSR1, SIGALRM}) {
+        const Scratch folder;
+        write_bytes(folder.work / "slow.txt", slow_scene("out.ppm"));
+        Options options;
+        options.named_temporary = true;
+        const pid_t pid = start(folder, {"slow.txt"}, options);
+        bool temporary_seen = false;
+        for (int i = 0; i < 400 && !temporary_seen; ++i) {
+            std::this_thread::sleep_for(std::chrono::milliseconds(5));
+            temporary_seen = holds_temporary(folder);
+        }
+        CHECK(temporary_seen);
+        kill(pid, signal_number);
+        CHECK_EQ(wait_for(pid), 1000 + signal_number);  // ended by the signal itself
+        CHECK_EQ(folder.names(), std::string("slow.txt"));
+    }
+}
+
 TEST(signals_ignored_at_start_stay_ignored) {
     const Scratch folder;
     write_bytes(folder.work / "slow.txt", slow_scene("out.ppm"));

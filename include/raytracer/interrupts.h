@@ -1,8 +1,10 @@
 // What an interrupted run (SIGINT, SIGTERM, SIGHUP; Ctrl+C and Ctrl+Break on Windows)
 // does: removes the named temporary file being written, if any, prints one line saying
 // so, and exits with 128 + the signal's number; once the image is being put in place,
-// nothing (hold_interrupts()). A signal that was ignored when the program started
-// (nohup) stays ignored. SIGXFSZ is ignored, so that a file-size limit (ulimit -f)
+// nothing (hold_interrupts()). The other signals that end a process by default
+// (SIGQUIT, SIGPIPE, SIGALRM, SIGUSR1, ...) keep their default action and exit status,
+// silently, but remove the named temporary first. A signal that was ignored when the
+// program started (nohup) stays ignored. SIGXFSZ is ignored, so that a file-size limit (ulimit -f)
 // makes a write fail, reported like a full disk, instead of killing the process
 // silently.
 #pragma once
