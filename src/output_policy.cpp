@@ -256,6 +256,13 @@ OutputChoice choose_output(const std::string& scene_output, const std::string* u
         choice.refusal = shown(choice.path, kMaxShownPath) + why;
         return choice;
     }
+    // "out/" names a folder whether or not there is one: said so, not "'out' does not exist".
+    if (!choice.path.empty() && (choice.path.back() == '/' ||
+                                 choice.path.back() == static_cast<char>(fs::path::preferred_separator))) {
+        choice.refusal = shown(choice.path, kMaxShownPath) + " ends in a separator, which names a folder, " +
+                         "expected a file name";
+        return choice;
+    }
     if (name_too_long(choice.path)) {
         choice.refusal = shown(choice.path, kMaxShownPath) + " is too long a name or path for the system (" +
                          std::strerror(ENAMETOOLONG) + "), expected a shorter one";
