@@ -143,6 +143,16 @@ bool holds_temporary(const Scratch& folder) {
     return false;
 }
 
+// Whether the named temporary appears within `tries` looks 5 ms apart.
+bool temporary_appears(const Scratch& folder, int tries) {
+    bool seen = false;
+    for (int i = 0; i < tries && !seen; ++i) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        seen = holds_temporary(folder);
+    }
+    return seen;
+}
+
 const std::string kPrecious = "an existing out.ppm that an interrupted run may not touch\n";
 
 }  // namespace
@@ -159,11 +169,7 @@ TEST(an_interrupted_render_leaves_nothing_and_exits_128_plus_the_signal) {
             Options options;
             options.named_temporary = named;
             const pid_t pid = start(folder, {"slow.txt"}, options);
-            bool temporary_seen = false;
-            for (int i = 0; i < 40 && !temporary_seen; ++i) {
-                std::this_thread::sleep_for(std::chrono::milliseconds(5));
-                temporary_seen = holds_temporary(folder);
-            }
+            const bool temporary_seen = temporary_appears(folder, 40);
             std::this_thread::sleep_for(std::chrono::milliseconds(50));
             CHECK_EQ(temporary_seen, named);  // the unnamed file has no name to see
             kill(pid, signal_number);
@@ -179,8 +185,6 @@ TEST(an_interrupted_render_leaves_nothing_and_exits_128_plus_the_signal) {
     }
 }
 
-// Started with SIGHUP and SIGTERM ignored (nohup, trap '' TERM), the render ignores them
-// too and completes; SIGINT, not ignored, still interrupts it.
 // Signals that end a process without a handler of ours (SIGUSR1, SIGALRM; Ctrl-\ and a
 // reader of stderr gone alike) end it as by default, but leave no named temporary.
 TEST(other_ending_signals_leave_no_temporary) {
@@ -190,18 +194,15 @@ TEST(other_ending_signals_leave_no_temporary) {
         Options options;
         options.named_temporary = true;
         const pid_t pid = start(folder, {"slow.txt"}, options);
-        bool temporary_seen = false;
-        for (int i = 0; i < 400 && !temporary_seen; ++i) {
-            std::this_thread::sleep_for(std::chrono::milliseconds(5));
-            temporary_seen = holds_temporary(folder);
-        }
-        CHECK(temporary_seen);
+        CHECK(temporary_appears(folder, 400));
         kill(pid, signal_number);
         CHECK_EQ(wait_for(pid), 1000 + signal_number);  // ended by the signal itself
         CHECK_EQ(folder.names(), std::string("slow.txt"));
     }
 }
 
+// Started with SIGHUP and SIGTERM ignored (nohup, trap '' TERM), the render ignores them
+// too and completes; SIGINT, not ignored, still interrupts it.
 TEST(signals_ignored_at_start_stay_ignored) {
     const Scratch folder;
     write_bytes(folder.work / "slow.txt", slow_scene("out.ppm"));
