@@ -228,6 +228,21 @@ std::string outside_working_folder(const std::string& output) {
     return {};
 }
 
+// Why the path itself, whatever is there, cannot be the image's, or empty: a name the
+// system does not allow, one that names a folder, one too long.
+std::string unusable_path(const std::string& path) {
+    if (const std::string why = unusable_name(path); !why.empty()) return shown(path, kMaxShownPath) + why;
+    // "out/" names a folder whether or not there is one: said so, not "'out' does not exist".
+    if (!path.empty() &&
+        (path.back() == '/' || path.back() == static_cast<char>(fs::path::preferred_separator)))
+        return shown(path, kMaxShownPath) +
+               " ends in a separator, which names a folder, expected a file name";
+    if (name_too_long(path))
+        return shown(path, kMaxShownPath) + " is too long a name or path for the system (" +
+               std::strerror(ENAMETOOLONG) + "), expected a shorter one";
+    return {};
+}
+
 }  // namespace
 
 OutputChoice choose_output(const std::string& scene_output, const std::string* user_output,
@@ -252,22 +267,8 @@ OutputChoice choose_output(const std::string& scene_output, const std::string* u
         choice.refusal = outside_working_folder(choice.path);
         if (!choice.refusal.empty()) return choice;
     }
-    if (const std::string why = unusable_name(choice.path); !why.empty()) {
-        choice.refusal = shown(choice.path, kMaxShownPath) + why;
-        return choice;
-    }
-    // "out/" names a folder whether or not there is one: said so, not "'out' does not exist".
-    if (!choice.path.empty() && (choice.path.back() == '/' ||
-                                 choice.path.back() == static_cast<char>(fs::path::preferred_separator))) {
-        choice.refusal = shown(choice.path, kMaxShownPath) + " ends in a separator, which names a folder, " +
-                         "expected a file name";
-        return choice;
-    }
-    if (name_too_long(choice.path)) {
-        choice.refusal = shown(choice.path, kMaxShownPath) + " is too long a name or path for the system (" +
-                         std::strerror(ENAMETOOLONG) + "), expected a shorter one";
-        return choice;
-    }
+    choice.refusal = unusable_path(choice.path);
+    if (!choice.refusal.empty()) return choice;
     const Existing existing = what_is_at(choice.path);
     if (choice.named_by_user && existing == Existing::Folder)
         choice.refusal = closed_stream_named(choice.path);
