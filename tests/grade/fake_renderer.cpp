@@ -14,8 +14,8 @@
 //   straggler   the key, leaving a process running (POSIX; its pid to FAKE_RENDERER_PID_FILE)
 //   trailing    the key with 5 bytes after its pixels
 //   dozen_steps the key with 12 pixels one level off, the most the rule allows
-//   sparse_tail the key with 64 GiB after its pixels (sparse: no disk)
-//   endless_comment  "P6\n#" and a comment of 64 GiB (sparse)
+//   sparse_tail the key with 64 GiB after its pixels (sparse: no disk; POSIX tests only)
+//   endless_comment  "P6\n#" and a comment of 64 GiB (sparse; POSIX tests only)
 //   waits_for_enter  the key, then reads standard input to its end
 //   endless_stderr   (POSIX) 64 GiB of stderr without a newline (sparse), status 1
 //   fifo_output      (POSIX) a FIFO at the output's name
