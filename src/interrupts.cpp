@@ -14,7 +14,7 @@
 #include <io.h>  // _unlink, _write
 #include <stdlib.h>
 #else
-#include <unistd.h>  // unlink, write, _exit
+#include <unistd.h>  // unlink, write, _exit, pause
 #endif
 
 namespace rt {
@@ -108,9 +108,11 @@ extern "C" void render_on_interrupt(int signal_number) {
 #ifndef _WIN32
 extern "C" void end_on_signal(int signal_number) {
     int running = kRunning;  // not once the image is being put in place
-    if (phase.compare_exchange_strong(running, kInterrupted) &&
-        cleanup_set.load(std::memory_order_acquire) != 0)
-        (void)unlink(cleanup_path);
+    if (phase.compare_exchange_strong(running, kInterrupted)) {
+        if (cleanup_set.load(std::memory_order_acquire) != 0) (void)unlink(cleanup_path);
+    } else if (running == kInterrupted) {
+        for (;;) pause();  // another handler is ending the run, its temporary first
+    }
     (void)std::signal(signal_number, SIG_DFL);
     (void)std::raise(signal_number);  // blocked in here: it ends the process once this returns
 }
@@ -125,23 +127,32 @@ void install_interrupt_handlers() {
     for (const int s : {SIGINT, SIGTERM, SIGBREAK})
         if (std::signal(s, render_on_interrupt) == SIG_IGN) (void)std::signal(s, SIG_IGN);
 #else
+    // One handler of either kind at a time on a thread: a second signal waits until the
+    // first has exited (a nested one would end the run before the first had removed the
+    // temporary).
+    sigset_t handled;
+    sigemptyset(&handled);
+    add_interrupt_signals(handled);
+    for (const int s : kEndingSignals) (void)sigaddset(&handled, s);
     struct sigaction action {};
     action.sa_handler = render_on_interrupt;
     action.sa_flags = SA_RESTART;  // a handler may return (hold_interrupts()): no EINTR
-    sigemptyset(&action.sa_mask);
-    // One handler at a time: a second signal waits until the first has exited.
-    add_interrupt_signals(action.sa_mask);
+    action.sa_mask = handled;
     for (const int s : kInterruptSignals) {
         struct sigaction before {};
         if (sigaction(s, nullptr, &before) == 0 && before.sa_handler == SIG_IGN) continue;
         (void)sigaction(s, &action, nullptr);
     }
+    // Only where the default action stands: an ignored signal, or a handler installed
+    // before main() (a profiler's SIGPROF, say), is left as it is.
     struct sigaction ending {};
     ending.sa_handler = end_on_signal;
-    sigemptyset(&ending.sa_mask);
+    ending.sa_mask = handled;
     for (const int s : kEndingSignals) {
         struct sigaction before {};
-        if (sigaction(s, nullptr, &before) == 0 && before.sa_handler == SIG_IGN) continue;
+        if (sigaction(s, nullptr, &before) != 0 || before.sa_handler != SIG_DFL ||
+            (before.sa_flags & SA_SIGINFO) != 0)
+            continue;
         (void)sigaction(s, &ending, nullptr);
     }
     (void)std::signal(SIGXFSZ, SIG_IGN);

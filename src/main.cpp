@@ -113,9 +113,9 @@ int write_image(const rt::CommandLine& line, const rt::Scene& scene) {
                             rt::shown(output.path, rt::kMaxShownPath) +
                                 " is a terminal, expected a pipe or a file for a binary image");
     }
-    // -o - > f.ppm 2>&1 --progress: the progress line would be written into the image.
+    // -o - > f.ppm 2>&1 --progress (or 2>&1 | ...): the progress line would go into the image.
     if (output.destination == rt::Destination::StandardOutput &&
-        line.progress == rt::CommandLine::Progress::Always && rt::standard_streams_are_one_file(1, 2)) {
+        line.progress == rt::CommandLine::Progress::Always && rt::standard_streams_are_one_stream(1, 2)) {
         return cannot_write(line.scene_file, scene, output,
                             rt::shown(output.path, rt::kMaxShownPath) +
                                 " is also standard error, where --progress draws its line, expected "

@@ -28,6 +28,7 @@ P6Writer::P6Writer(PendingFile& file, int width, int height)
     const std::string header = "P6\n" + std::to_string(width) + ' ' + std::to_string(height) + "\n255\n";
     file_.expect_size(header.size() + expected_);
     file_.write(header.data(), header.size());
+    if (file_.write_failed()) failed_.store(true, std::memory_order_relaxed);
 }
 
 void P6Writer::rows(const std::uint8_t* bytes, std::size_t size) {

@@ -63,6 +63,8 @@ bool standard_streams_are_one_file(int a, int b) {
     return stream_identity(a, x) && stream_identity(b, y) && same_identity(x, y);
 }
 
+bool standard_streams_are_one_stream(int a, int b) { return standard_streams_are_one_file(a, b); }
+
 // A closed standard stream has no handle at all here: writing it fails and says so.
 bool standard_stream_is_folder(int /*stream*/) { return false; }
 std::string closed_stream_named(const std::string& /*path*/) { return {}; }
@@ -92,6 +94,13 @@ bool standard_streams_are_one_file(int a, int b) {
     struct stat x {
     }, y{};
     return ::fstat(a, &x) == 0 && ::fstat(b, &y) == 0 && S_ISREG(x.st_mode) && same_identity(x, y);
+}
+
+bool standard_streams_are_one_stream(int a, int b) {
+    struct stat x {
+    }, y{};
+    return ::fstat(a, &x) == 0 && ::fstat(b, &y) == 0 &&
+           (S_ISREG(x.st_mode) || S_ISFIFO(x.st_mode) || S_ISSOCK(x.st_mode)) && same_identity(x, y);
 }
 
 // Whether standard stream 0, 1 or 2 is a folder: closed at the start (main() opens it on /), or given so.

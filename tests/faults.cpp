@@ -605,6 +605,17 @@ TEST(a_progress_line_into_the_image_is_refused) {
     close(options.stdout_fd);
     CHECK_EQ(read_bytes(folder.work / "both.ppm").substr(0, 3), std::string("P6\n"));
     CHECK_EQ(read_bytes(folder.work / "both.ppm").size(), std::size_t{30015});  // 100x100
+    // 2>&1 | ...: one pipe.
+    int pipe_fds[2];
+    CHECK_EQ(pipe(pipe_fds), 0);
+    options.stdout_fd = options.stderr_fd = pipe_fds[1];
+    CHECK_EQ(run(folder, {"--progress", "-o", "-", "scene.txt"}, options), 3);
+    close(pipe_fds[1]);
+    char said[512] = {};
+    CHECK(read(pipe_fds[0], said, sizeof said - 1) > 0);
+    close(pipe_fds[0]);
+    CHECK(std::string(said).find("is also standard error, where --progress draws its line") !=
+          std::string::npos);
 }
 
 // The pipe a scene comes in on is not written: this process holds its reading end, so

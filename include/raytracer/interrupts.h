@@ -1,8 +1,8 @@
 // What an interrupted run (SIGINT, SIGTERM, SIGHUP; Ctrl+C and Ctrl+Break on Windows)
 // does: removes the named temporary file being written, if any, prints one line saying
 // so, and exits with 128 + the signal's number; once the image is being put in place,
-// nothing (hold_interrupts()). The other signals that end a process by default
-// (SIGQUIT, SIGPIPE, SIGALRM, SIGUSR1, ...) keep their default action and exit status,
+// nothing (hold_interrupts()). SIGQUIT, SIGPIPE, SIGALRM, SIGVTALRM, SIGPROF, SIGUSR1,
+// SIGUSR2 and SIGXCPU, where their default action stands, keep it and its exit status,
 // silently, but remove the named temporary first. A signal that was ignored when the
 // program started (nohup) stays ignored. SIGXFSZ is ignored, so that a file-size limit (ulimit -f)
 // makes a write fail, reported like a full disk, instead of killing the process
@@ -22,7 +22,8 @@ void install_interrupt_handlers();
 // threads start with them blocked (helper_pool.cpp), so that a handler runs on the main
 // thread only, the one that draws the progress line (progress.cpp): never beside a
 // redraw, and no line is drawn after its message. (Windows runs a console's handler on
-// a thread of its own.)
+// a thread of its own. The other ending signals' handler, which writes nothing, may run
+// on any thread.)
 void add_interrupt_signals(sigset_t& set);
 #endif
 

@@ -169,8 +169,11 @@ extern "C" void grader_on_interrupt(int signal) { g_interrupting_signal = signal
     const int out = open(command.stdout_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     const int err = open(command.stderr_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     if (in >= 0 && out >= 0 && err >= 0 && dup2(in, 0) >= 0 && dup2(out, 1) >= 0 && dup2(err, 2) >= 0 &&
-        chdir(command.folder.c_str()) == 0)
+        chdir(command.folder.c_str()) == 0) {
+        for (const int fd : {in, out, err})  // the program gets 0, 1 and 2, not copies besides
+            if (fd > 2) close(fd);
         execv(argv[0], argv);
+    }
     const int error = errno;
     if (write(report_fd, &error, sizeof error) < 0) _exit(127);
     _exit(127);

@@ -120,9 +120,9 @@ int complete_options(grade::Options& options, const char* argv0) {
 }
 
 // Why the --html page may not be written where asked, found before any scene is graded:
-// it would replace a scene or a key being graded, any file of the scene or key folder
-// (those --only leaves out too), the program under test, a write-protected file, or
-// something that is not a file. Empty to go on.
+// it would replace a scene or a key being graded, or any other of the scene or key folder
+// (those --only leaves out: *.txt, *.ppm there), the program under test, a
+// write-protected file, or something that is not a file. Empty to go on.
 std::string html_refusal(const grade::Options& options, const std::vector<fs::path>& scenes) {
     std::error_code ec;
     const fs::file_status status = fs::status(options.html, ec);
@@ -134,9 +134,12 @@ std::string html_refusal(const grade::Options& options, const std::vector<fs::pa
         if (is(scene)) return page + " is a scene being graded";
         if (is(grade::key_for(options.keys, scene))) return page + " is a key being graded";
     }
-    const fs::path folder = fs::absolute(options.html, ec).parent_path();
-    if (fs::equivalent(folder, options.scenes, ec)) return page + " is a file of the scene folder";
-    if (fs::equivalent(folder, options.keys, ec)) return page + " is a file of the key folder";
+    // A scene or key --only leaves out (a page of an earlier run there may be replaced).
+    const fs::path folder = fs::absolute(options.html, ec).parent_path(), type = options.html.extension();
+    if (type == ".txt" && fs::equivalent(folder, options.scenes, ec))
+        return page + " is a scene of the scene folder";
+    if (type == ".ppm" && fs::equivalent(folder, options.keys, ec))
+        return page + " is a key of the key folder";
     if (is(options.raytracer)) return page + " is the program being graded";
     if ((status.permissions() & fs::perms::owner_write) == fs::perms::none)
         return page + " is write-protected";
@@ -244,12 +247,14 @@ int main(int argc, char** argv) {
     } catch (const std::exception& e) {
         std::cerr << "raytracer-grade: error: " << e.what() << "\n";
     }
-    if (!grade::remove_folder(scratch))
+    const bool removed = grade::remove_folder(scratch);
+    if (!removed)
         std::cerr << "raytracer-grade: warning: the scratch folder "
                   << rt::shown(scratch.u8string(), rt::kMaxShownPath)
                   << " could not be removed in full; remove it by hand\n";
     if (const int signal = grade::interrupting_signal(); signal != 0) {
-        std::cerr << "raytracer-grade: interrupted; the render was stopped and the scratch folder removed\n";
+        std::cerr << "raytracer-grade: interrupted; the render was stopped"
+                  << (removed ? " and the scratch folder removed\n" : "\n");
         std::signal(signal, SIG_DFL);
         std::raise(signal);
         return 128 + signal;

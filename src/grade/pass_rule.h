@@ -15,8 +15,8 @@
 
 namespace grade {
 
-// The most pixels off by one level that a scene may have: SPEC section 7's "at most a
-// dozen pixels in all".
+// The most pixels off by one level that a scene may have: the dozen that SPEC section 7
+// allows in all 12 keys, per scene here (the course's marks are per scene).
 inline constexpr long long kMaxTruncationSteps = 12;
 
 // What the rule makes of one pixel.

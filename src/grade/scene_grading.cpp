@@ -167,17 +167,20 @@ void note_if_slow(SceneResult& result) {
 }  // namespace
 
 namespace {
-// Gives the owner every permission on each folder under folder (not through symbolic
-// links), so that what a run made write-protected ("chmod 500 sub", a copy of a
-// read-only folder) can be removed.
+// Gives the owner every permission on each folder under folder and write permission on
+// each file (not through symbolic links), so that what a run made write-protected
+// ("chmod 500 sub", a copy of a read-only folder; on Windows a read-only file) can be
+// removed.
 void make_removable(const fs::path& folder) {
     std::error_code ec, ignored;
     fs::permissions(folder, fs::perms::owner_all, fs::perm_options::add, ignored);
     // Each folder is met before it is entered, so its permissions come first.
     for (auto it = fs::recursive_directory_iterator(folder, ec);
          !ec && it != fs::recursive_directory_iterator(); it.increment(ec))
-        if (it->symlink_status(ignored).type() == fs::file_type::directory)
+        if (const fs::file_type type = it->symlink_status(ignored).type(); type == fs::file_type::directory)
             fs::permissions(it->path(), fs::perms::owner_all, fs::perm_options::add, ignored);
+        else if (type == fs::file_type::regular)
+            fs::permissions(it->path(), fs::perms::owner_write, fs::perm_options::add, ignored);
 }
 }  // namespace
 

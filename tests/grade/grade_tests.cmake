@@ -105,8 +105,14 @@ grade_test(html-onto-a-scene one_level 2 "is a scene being graded, expected a ne
 set(GRADE_EXTRA -DCLEAN=${grade_out}/refuse-other "-DCOPY=${course_scene_dir}/testShadow.txt|${grade_out}/refuse-other/scenes|${course_scene_dir}/testAmbient.txt|${grade_out}/refuse-other/scenes|${course_scene_dir}/../keys/keyShadow.ppm|${grade_out}/refuse-other/keys"
                 -DPAGE=${grade_out}/refuse-other/scenes/testAmbient.txt "-DPAGE_EXPECT=OUTPUT")
 set(GRADE_SCENES "${grade_out}/refuse-other/scenes")
-grade_test(html-onto-another-scene one_level 2 "is a file of the scene folder, expected a new or replaceable page"
+grade_test(html-onto-another-scene one_level 2 "is a scene of the scene folder, expected a new or replaceable page"
            --only testShadow --html ${grade_out}/refuse-other/scenes/testAmbient.txt)
+# Another file there (a page of an earlier run, here a copy of a script) is replaced.
+set(GRADE_EXTRA -DCLEAN=${grade_out}/page-beside "-DCOPY=${course_scene_dir}/testShadow.txt|${grade_out}/page-beside/scenes|${CMAKE_CURRENT_SOURCE_DIR}/grade/check_screenshot.py|${grade_out}/page-beside/scenes|${course_scene_dir}/../keys/keyShadow.ppm|${grade_out}/page-beside/keys"
+                -DPAGE=${grade_out}/page-beside/scenes/check_screenshot.py "-DPAGE_EXPECT=marks 2/2")
+set(GRADE_SCENES "${grade_out}/page-beside/scenes")
+grade_test(html-beside-the-scenes dozen_steps 0 "marks 2/2: the scene passes: PASS"
+           --html ${grade_out}/page-beside/scenes/check_screenshot.py)
 set(GRADE_SCENES "${course_scene_dir}")
 unset(GRADE_EXTRA)
 
