@@ -21,12 +21,13 @@ namespace rt {
 namespace {
 
 // The handlers read only these, take `phase` below by a compare-exchange, and call only
-// unlink, write and _exit (end_on_signal(): signal and raise; on Windows, signal() to
-// stay installed), which are async-signal-safe. A path is copied into cleanup_path before cleanup_set is
-// raised, so the handler never sees half a path: the flags are lock-free atomics, stored with release and
-// loaded with acquire, as the handler may run on another thread than the one that sets them (on Windows a
-// thread of its own; elsewhere the main thread, while a helper writes), where a fence for signals alone would
-// not order the path before the flag.
+// unlink, write and _exit (end_on_signal(): signal, raise and pause; on Windows,
+// signal() to stay installed), which are async-signal-safe. A path is copied into
+// cleanup_path before cleanup_set is raised, so a handler never sees half a path: the
+// flags are lock-free atomics, stored with release and loaded with acquire, as a handler
+// may run on another thread than the one that sets them (on Windows a thread of its own;
+// elsewhere the main thread, or a helper for the ending signals), where a fence for
+// signals alone would not order the path before the flag.
 static_assert(std::atomic<int>::is_always_lock_free, "a signal handler may use only lock-free atomics");
 constexpr std::size_t kMaxPath = 4096;
 char cleanup_path[kMaxPath];

@@ -74,6 +74,14 @@ namespace {
 bool same_identity(const struct stat& x, const struct stat& y) {
     return x.st_dev == y.st_dev && x.st_ino == y.st_ino;
 }
+
+// Whether two standard streams are one file whose type `kind` takes.
+template <typename Kind>
+bool standard_streams_are_one(int a, int b, Kind kind) {
+    struct stat x {
+    }, y{};
+    return ::fstat(a, &x) == 0 && ::fstat(b, &y) == 0 && kind(x.st_mode) && same_identity(x, y);
+}
 }  // namespace
 
 bool same_file(const std::string& a, const std::string& b) {
@@ -89,18 +97,13 @@ bool standard_stream_is(int stream, const std::string& file) {
     return ::fstat(stream, &x) == 0 && ::stat(file.c_str(), &y) == 0 && same_identity(x, y);
 }
 
-// Whether two standard streams are one regular file (not one terminal, say).
 bool standard_streams_are_one_file(int a, int b) {
-    struct stat x {
-    }, y{};
-    return ::fstat(a, &x) == 0 && ::fstat(b, &y) == 0 && S_ISREG(x.st_mode) && same_identity(x, y);
+    return standard_streams_are_one(a, b, [](mode_t mode) { return S_ISREG(mode); });
 }
 
 bool standard_streams_are_one_stream(int a, int b) {
-    struct stat x {
-    }, y{};
-    return ::fstat(a, &x) == 0 && ::fstat(b, &y) == 0 &&
-           (S_ISREG(x.st_mode) || S_ISFIFO(x.st_mode) || S_ISSOCK(x.st_mode)) && same_identity(x, y);
+    return standard_streams_are_one(
+        a, b, [](mode_t mode) { return S_ISREG(mode) || S_ISFIFO(mode) || S_ISSOCK(mode); });
 }
 
 // Whether standard stream 0, 1 or 2 is a folder: closed at the start (main() opens it on /), or given so.
