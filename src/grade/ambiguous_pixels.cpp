@@ -3,6 +3,12 @@
 namespace grade {
 namespace {
 
+// The other outcomes. Where the keys count a tangent ray as a hit, it may miss and show
+// BACK, white in these scenes. Where the keys see past a rim (t = 1 is not visible), the
+// ray may see the ellipsoid's inside instead, (0, 0, 63) in both scenes.
+constexpr std::array<std::uint8_t, 3> kBack = {255, 255, 255};
+constexpr std::array<std::uint8_t, 3> kInsideSeen = {0, 0, 63};
+
 // Found with exact rational arithmetic over every eye ray of the 12 course scenes (the
 // scene numbers are decimals, so each ray and ellipsoid is exact in fractions): a ray is
 // tangent when the discriminant of its unit-sphere quadratic is exactly zero, in front of
@@ -18,32 +24,32 @@ constexpr const char* kRimOfS4 = "the eye ray meets s4 exactly where the near pl
 
 const std::vector<AmbiguousPixel>& ambiguous_pixels() {
     static const std::vector<AmbiguousPixel> table = {
-        {"keyAmbient", 180, 300, kTangentToS3},  {"keyDiffuse", 228, 204, kTangentToS3},
-        {"keyDiffuse", 180, 300, kTangentToS3},  {"keyIllum", 180, 300, kTangentToS3},
-        {"keyIllum", 300, 225, kRimOfS4},        {"keyIllum", 279, 228, kRimOfS4},
-        {"keyIllum", 321, 228, kRimOfS4},        {"keyIllum", 255, 240, kRimOfS4},
-        {"keyIllum", 345, 240, kRimOfS4},        {"keyIllum", 240, 255, kRimOfS4},
-        {"keyIllum", 360, 255, kRimOfS4},        {"keyIllum", 228, 279, kRimOfS4},
-        {"keyIllum", 372, 279, kRimOfS4},        {"keyIllum", 225, 300, kRimOfS4},
-        {"keyIllum", 375, 300, kRimOfS4},        {"keyIllum", 228, 321, kRimOfS4},
-        {"keyIllum", 372, 321, kRimOfS4},        {"keyIllum", 240, 345, kRimOfS4},
-        {"keyIllum", 360, 345, kRimOfS4},        {"keyIllum", 255, 360, kRimOfS4},
-        {"keyIllum", 345, 360, kRimOfS4},        {"keyIllum", 279, 372, kRimOfS4},
-        {"keyIllum", 321, 372, kRimOfS4},        {"keyIllum", 300, 375, kRimOfS4},
-        {"keyImgPlane", 300, 150, kRimOfS1},     {"keyImgPlane", 258, 156, kRimOfS1},
-        {"keyImgPlane", 342, 156, kRimOfS1},     {"keyImgPlane", 210, 180, kRimOfS1},
-        {"keyImgPlane", 390, 180, kRimOfS1},     {"keyImgPlane", 180, 210, kRimOfS1},
-        {"keyImgPlane", 420, 210, kRimOfS1},     {"keyImgPlane", 156, 258, kRimOfS1},
-        {"keyImgPlane", 444, 258, kRimOfS1},     {"keyImgPlane", 150, 300, kRimOfS1},
-        {"keyImgPlane", 450, 300, kRimOfS1},     {"keyImgPlane", 156, 342, kRimOfS1},
-        {"keyImgPlane", 444, 342, kRimOfS1},     {"keyImgPlane", 180, 390, kRimOfS1},
-        {"keyImgPlane", 420, 390, kRimOfS1},     {"keyImgPlane", 210, 420, kRimOfS1},
-        {"keyImgPlane", 390, 420, kRimOfS1},     {"keyImgPlane", 258, 444, kRimOfS1},
-        {"keyImgPlane", 342, 444, kRimOfS1},     {"keyImgPlane", 300, 450, kRimOfS1},
-        {"keyParsing", 180, 300, kTangentToS3},  {"keySample", 180, 300, kTangentToS3},
-        {"keyShadow", 400, 150, kTangentToS1},   {"keyShadow", 375, 200, kTangentToS1},
-        {"keyShadow", 450, 200, kTangentToS1},   {"keyShadow", 400, 225, kTangentToS1},
-        {"keySpecular", 228, 204, kTangentToS3}, {"keySpecular", 180, 300, kTangentToS3},
+        {"keyAmbient", 180, 300, kBack, kTangentToS3},    {"keyDiffuse", 228, 204, kBack, kTangentToS3},
+        {"keyDiffuse", 180, 300, kBack, kTangentToS3},    {"keyIllum", 180, 300, kBack, kTangentToS3},
+        {"keyIllum", 300, 225, kInsideSeen, kRimOfS4},    {"keyIllum", 279, 228, kInsideSeen, kRimOfS4},
+        {"keyIllum", 321, 228, kInsideSeen, kRimOfS4},    {"keyIllum", 255, 240, kInsideSeen, kRimOfS4},
+        {"keyIllum", 345, 240, kInsideSeen, kRimOfS4},    {"keyIllum", 240, 255, kInsideSeen, kRimOfS4},
+        {"keyIllum", 360, 255, kInsideSeen, kRimOfS4},    {"keyIllum", 228, 279, kInsideSeen, kRimOfS4},
+        {"keyIllum", 372, 279, kInsideSeen, kRimOfS4},    {"keyIllum", 225, 300, kInsideSeen, kRimOfS4},
+        {"keyIllum", 375, 300, kInsideSeen, kRimOfS4},    {"keyIllum", 228, 321, kInsideSeen, kRimOfS4},
+        {"keyIllum", 372, 321, kInsideSeen, kRimOfS4},    {"keyIllum", 240, 345, kInsideSeen, kRimOfS4},
+        {"keyIllum", 360, 345, kInsideSeen, kRimOfS4},    {"keyIllum", 255, 360, kInsideSeen, kRimOfS4},
+        {"keyIllum", 345, 360, kInsideSeen, kRimOfS4},    {"keyIllum", 279, 372, kInsideSeen, kRimOfS4},
+        {"keyIllum", 321, 372, kInsideSeen, kRimOfS4},    {"keyIllum", 300, 375, kInsideSeen, kRimOfS4},
+        {"keyImgPlane", 300, 150, kInsideSeen, kRimOfS1}, {"keyImgPlane", 258, 156, kInsideSeen, kRimOfS1},
+        {"keyImgPlane", 342, 156, kInsideSeen, kRimOfS1}, {"keyImgPlane", 210, 180, kInsideSeen, kRimOfS1},
+        {"keyImgPlane", 390, 180, kInsideSeen, kRimOfS1}, {"keyImgPlane", 180, 210, kInsideSeen, kRimOfS1},
+        {"keyImgPlane", 420, 210, kInsideSeen, kRimOfS1}, {"keyImgPlane", 156, 258, kInsideSeen, kRimOfS1},
+        {"keyImgPlane", 444, 258, kInsideSeen, kRimOfS1}, {"keyImgPlane", 150, 300, kInsideSeen, kRimOfS1},
+        {"keyImgPlane", 450, 300, kInsideSeen, kRimOfS1}, {"keyImgPlane", 156, 342, kInsideSeen, kRimOfS1},
+        {"keyImgPlane", 444, 342, kInsideSeen, kRimOfS1}, {"keyImgPlane", 180, 390, kInsideSeen, kRimOfS1},
+        {"keyImgPlane", 420, 390, kInsideSeen, kRimOfS1}, {"keyImgPlane", 210, 420, kInsideSeen, kRimOfS1},
+        {"keyImgPlane", 390, 420, kInsideSeen, kRimOfS1}, {"keyImgPlane", 258, 444, kInsideSeen, kRimOfS1},
+        {"keyImgPlane", 342, 444, kInsideSeen, kRimOfS1}, {"keyImgPlane", 300, 450, kInsideSeen, kRimOfS1},
+        {"keyParsing", 180, 300, kBack, kTangentToS3},    {"keySample", 180, 300, kBack, kTangentToS3},
+        {"keyShadow", 400, 150, kBack, kTangentToS1},     {"keyShadow", 375, 200, kBack, kTangentToS1},
+        {"keyShadow", 450, 200, kBack, kTangentToS1},     {"keyShadow", 400, 225, kBack, kTangentToS1},
+        {"keySpecular", 228, 204, kBack, kTangentToS3},   {"keySpecular", 180, 300, kBack, kTangentToS3},
     };
     return table;
 }

@@ -1,8 +1,8 @@
 // The picture of a failing scene: key | yours | difference, side by side, for a student to
 // see where the images differ. In the difference panel the key is shown dimmed, a pixel
-// off by one level dark blue, a known ambiguous pixel (allowed) yellow, and an
-// unexplained one red, brighter the larger the difference; when there are few, each is
-// also ringed so that a single pixel stands out.
+// off by one level dark blue, a known ambiguous pixel showing the other outcome (allowed)
+// yellow, and an unexplained one red, brighter the larger the difference; when there are
+// few, each is also ringed so that a single pixel stands out.
 #pragma once
 
 #include <string>

@@ -93,8 +93,8 @@ std::string write_html_page(const fs::path& page, const std::vector<SceneResult>
         << ".panels span { display: inline-block; width: 33%; text-align: center; }\n"
         << "</style>\n</head>\n<body>\n<h1>" << escaped(summary) << "</h1>\n"
         << "<p>Difference panel: dimmed key where equal; dark blue: off by one level; yellow: a "
-           "known "
-           "ambiguous pixel (allowed); red: unexplained, ringed in magenta when few.</p>\n"
+           "known ambiguous pixel showing the other outcome (allowed); red: unexplained, ringed in "
+           "magenta when few.</p>\n"
         << "<table>\n<tr><th>scene</th><th>result</th><th>marks</th><th>time s</th><th>details</th></tr>\n";
     for (const SceneResult& r : results) write_row(out, r);
     out << "</table>\n";

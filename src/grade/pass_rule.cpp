@@ -27,9 +27,14 @@ PixelVerdict pixel_verdict(const rt::Image& key, const rt::Image& got, int x, in
     for (std::size_t k = at; k < at + 3; ++k) largest = std::max(largest, std::abs(key.rgb[k] - got.rgb[k]));
     if (largest == 0) return PixelVerdict::kSame;
     if (largest <= 1) return PixelVerdict::kTruncationStep;
-    const bool known = std::any_of(ambiguous.begin(), ambiguous.end(),
-                                   [&](const AmbiguousPixel& p) { return p.x == x && p.y == y; });
-    return known ? PixelVerdict::kAmbiguous : PixelVerdict::kUnexplained;
+    // A known ambiguous pixel may show the other outcome (within a truncation step of it).
+    const bool other_outcome = std::any_of(ambiguous.begin(), ambiguous.end(), [&](const AmbiguousPixel& p) {
+        if (p.x != x || p.y != y) return false;
+        for (std::size_t c = 0; c < 3; ++c)
+            if (std::abs(p.other[c] - got.rgb[at + c]) > 1) return false;
+        return true;
+    });
+    return other_outcome ? PixelVerdict::kAmbiguous : PixelVerdict::kUnexplained;
 }
 
 Judgement judge(const std::string& key_name, const rt::Image& key, const rt::Image& got) {

@@ -1,9 +1,10 @@
 // The pass rule of SPEC section 7, per scene: every pixel that differs from the key must be
 // explainable, either as a truncation step (each channel off by at most one level) or as
-// one of the key's known ambiguous pixels (ambiguous_pixels.h), and the truncation steps
-// must be few: a value that lands within rounding of a whole level is rare (3 pixels of the
-// 12 keys' 4,320,000 for our renderer), where rounding instead of truncating (SPEC section
-// 6) puts half the pixels one level off. Anything else fails.
+// one of the key's known ambiguous pixels showing its other outcome, within a truncation
+// step (ambiguous_pixels.h). The truncation steps must be few: a value that lands within
+// rounding of a whole level is rare (3 pixels of the 12 keys' 4,320,000 for our renderer),
+// where rounding instead of truncating (SPEC section 6) puts half the pixels one level
+// off. Anything else fails.
 #pragma once
 
 #include <cstdint>
@@ -40,12 +41,12 @@ struct Box {
 };
 
 struct Judgement {
-    long long differing = 0;                         // pixels with any channel different
-    long long truncation_steps = 0;                  // of those, off by at most one level in each channel
-    long long ambiguous = 0;                         // of those, known ambiguous pixels of the key
-    long long unexplained = 0;                       // the rest: each fails the scene
-    int largest_difference = 0;                      // in levels, over all differing pixels
-    Box unexplained_box;                             // where the unexplained pixels lie
+    long long differing = 0;         // pixels with any channel different
+    long long truncation_steps = 0;  // of those, off by at most one level in each channel
+    long long ambiguous = 0;         // of those, known ambiguous pixels showing the other outcome
+    long long unexplained = 0;       // the rest: each fails the scene
+    int largest_difference = 0;      // in levels, over all differing pixels
+    Box unexplained_box;             // where the unexplained pixels lie
     std::vector<PixelDifference> first_unexplained;  // in reading order, at most kShown
     bool too_many_steps() const { return truncation_steps > kMaxTruncationSteps; }
     bool passed() const { return unexplained == 0 && !too_many_steps(); }

@@ -38,7 +38,8 @@ std::string describe_differences(const Judgement& j) {
                 " truncation steps allowed (a systematic difference: rounding, not truncating?)";
     else if (j.truncation_steps > 0)
         text += "; " + std::to_string(j.truncation_steps) + " by one level (allowed)";
-    if (j.ambiguous > 0) text += "; " + std::to_string(j.ambiguous) + " known ambiguous (allowed)";
+    if (j.ambiguous > 0)
+        text += "; " + std::to_string(j.ambiguous) + " known ambiguous showing the other outcome (allowed)";
     if (j.unexplained > 0) text += "; " + std::to_string(j.unexplained) + " unexplained";
     return text;
 }

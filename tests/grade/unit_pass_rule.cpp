@@ -62,14 +62,36 @@ TEST(two_levels_in_one_channel_of_one_pixel_fails_and_is_located) {
     CHECK(j.first_unexplained[0].key[2] == 50 && j.first_unexplained[0].got[2] == 52);
 }
 
-TEST(a_known_ambiguous_pixel_may_differ_but_only_in_its_own_key) {
-    // keyShadow (400, 150): the eye ray tangent to s1, named in SPEC section 7.
+TEST(a_known_ambiguous_pixel_may_show_its_other_outcome_but_only_in_its_own_key) {
+    // keyShadow (400, 150): the eye ray tangent to s1, named in SPEC section 7; the key
+    // has the hit, the other outcome is the miss (BACK, white).
+    rt::Image key = grey(600, 600, 255);
+    set(key, 400, 150, 0, 23), set(key, 400, 150, 1, 0), set(key, 400, 150, 2, 0);
     rt::Image got = grey(600, 600, 255);
-    set(got, 400, 150, 0, 0);
-    CHECK(grade::judge("keyShadow", grey(600, 600, 255), got).passed());
-    CHECK(!grade::judge("keyAmbient", grey(600, 600, 255), got).passed());
+    const grade::Judgement j = grade::judge("keyShadow", key, got);
+    CHECK(j.passed() && j.ambiguous == 1 && j.truncation_steps == 0);
+    CHECK(!grade::judge("keyAmbient", key, got).passed());
+    set(got, 400, 150, 1, 254);  // a truncation step from the other outcome
+    CHECK(grade::judge("keyShadow", key, got).passed());
+    set(got, 400, 150, 1, 253);  // two levels from it, and from the key: neither outcome
+    const grade::Judgement two = grade::judge("keyShadow", key, got);
+    CHECK(!two.passed() && two.unexplained == 1 && two.ambiguous == 0);
+    set(got, 400, 150, 1, 255);
     set(got, 401, 150, 0, 0);  // its neighbour is not ambiguous
-    CHECK(!grade::judge("keyShadow", grey(600, 600, 255), got).passed());
+    CHECK(!grade::judge("keyShadow", key, got).passed());
+}
+
+TEST(every_known_ambiguous_pixel_passes_with_its_other_outcome_and_fails_with_a_third_colour) {
+    for (const grade::AmbiguousPixel& p : grade::ambiguous_pixels()) {
+        const rt::Image key = grey(600, 600, 100);  // two levels or more from each colour below
+        rt::Image got = key;
+        for (int c = 0; c < 3; ++c) set(got, p.x, p.y, c, p.other[static_cast<std::size_t>(c)]);
+        const grade::Judgement j = grade::judge(p.key, key, got);
+        CHECK(j.passed() && j.ambiguous == 1);
+        for (int c = 0; c < 3; ++c)
+            set(got, p.x, p.y, c, static_cast<std::uint8_t>(p.other[static_cast<std::size_t>(c)] ^ 0x40));
+        CHECK(!grade::judge(p.key, key, got).passed());
+    }
 }
 
 TEST(the_table_holds_the_pixels_spec_section_7_names) {
