@@ -47,13 +47,16 @@ public:
 
     // Whether the line through the origin along d (integers, any common positive scale)
     // meets the ellipsoid.
-    bool meets(const std::array<Integer, 3>& d) const {
+    bool meets(const std::array<Integer, 3>& d) const { return side(d) >= 0; }
+    // The sign of D^T M D: 1 where the line crosses the ellipsoid, 0 where it is exactly
+    // tangent, -1 where it misses.
+    int side(const std::array<Integer, 3>& d) const {
         Integer sum;
         for (int i = 0; i < 3; ++i) {
             sum = sum + m_[i][i] * (d[i] * d[i]);
             for (int j = i + 1; j < 3; ++j) sum = sum + m_[i][j] * (from_int(2) * d[i] * d[j]);
         }
-        return sign(sum) >= 0;
+        return sign(sum);
     }
 
 private:
