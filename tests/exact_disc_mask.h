@@ -1,8 +1,9 @@
 // The exact hit mask of one ellipsoid seen by the camera of SPEC section 3, computed in
 // integers from the decimal scene: pixel (c, r) is a hit when the exact ray through its
 // corner, x = LEFT + (RIGHT-LEFT) c/cols, y = TOP - (TOP-BOTTOM) r/rows, z = -NEAR, meets
-// the exact ellipsoid (tangency included). Used for ellipsoids wholly beyond the near
-// plane, where meeting the line is seeing it.
+// the exact ellipsoid (tangency included). A test of the line, not of where along it:
+// for an ellipsoid wholly beyond the near plane meeting the line is seeing it
+// (precision_thin_discs.cpp); elsewhere the caller checks where (ambiguous_outcomes.cpp).
 //
 // With o' = -C/s and d' = D/s, the line meets it when b^2 - a c >= 0 (a = d'.d',
 // b = o'.d', c = o'.o' - 1). Times (s_x^2 s_y^2 s_z^2)^2, with K_i the product of the two

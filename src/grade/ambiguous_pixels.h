@@ -17,7 +17,7 @@ struct AmbiguousPixel {
     int x, y;         // column, row from the top
     // The pixel's bytes where its ray falls the other way from the key's (hit where the
     // key misses, or the reverse): the reference's colour for rays a billionth of a pixel
-    // to that side (unit.ambiguous_outcomes derives each from the course scenes).
+    // to that side (grade.ambiguous-outcomes derives each from the course scenes).
     std::array<std::uint8_t, 3> other;
     const char* reason;
 };
