@@ -71,9 +71,7 @@ void write_picture(std::ostream& out, const SceneResult& r, const std::string& u
             << ".";
     out << "</p>\n<ul>\n";
     for (const PixelDifference& d : j.first_unexplained)
-        out << "<li>(" << d.x << ", " << d.y << "): key " << int{d.key[0]} << " " << int{d.key[1]} << " "
-            << int{d.key[2]} << ", got " << int{d.got[0]} << " " << int{d.got[1]} << " " << int{d.got[2]}
-            << "</li>\n";
+        out << "<li>" << escaped(describe_pixel(d)) << "</li>\n";
     out << "</ul>\n<p class=\"panels\"><span>key</span><span>yours</span><span>difference</span></p>\n"
         << "<img src=\"" << url << "\" alt=\"" << escaped(r.name) << ": key, yours, difference\">\n";
 }

@@ -69,6 +69,8 @@ Judgement judge(const std::string& key_name, const rt::Image& key, const rt::Ima
                         d.key[c] = key.rgb[at + c];
                         d.got[c] = got.rgb[at + c];
                     }
+                    for (const AmbiguousPixel& p : ambiguous)
+                        if (p.x == x && p.y == y) d.ambiguous = true, d.other = p.other;
                     j.first_unexplained.push_back(d);
                 }
             }

@@ -7,6 +7,7 @@
 // off. Anything else fails.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -32,6 +33,8 @@ struct PixelDifference {
     int x = 0, y = 0;  // column, row from the top
     std::uint8_t key[3] = {0, 0, 0};
     std::uint8_t got[3] = {0, 0, 0};
+    bool ambiguous = false;               // a known ambiguous pixel, with
+    std::array<std::uint8_t, 3> other{};  // its other outcome
 };
 
 struct Box {

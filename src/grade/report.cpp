@@ -10,7 +10,7 @@ namespace {
 
 using rt::plural;
 
-std::string rgb(const std::uint8_t (&c)[3]) {
+std::string rgb(const std::uint8_t* c) {
     return std::to_string(c[0]) + " " + std::to_string(c[1]) + " " + std::to_string(c[2]);
 }
 
@@ -44,6 +44,13 @@ std::string describe_differences(const Judgement& j) {
     return text;
 }
 
+std::string describe_pixel(const PixelDifference& d) {
+    std::string text = "(" + std::to_string(d.x) + ", " + std::to_string(d.y) + "): key " + rgb(d.key) +
+                       ", got " + rgb(d.got);
+    if (d.ambiguous) text += " (a known ambiguous pixel: its other outcome is " + rgb(d.other.data()) + ")";
+    return text;
+}
+
 void print_scene(const SceneResult& r, const std::string& picture) {
     const int marks = r.passed() ? kMarksPerScene : 0;
     const char* result = r.passed() ? "pass" : "FAIL";
@@ -65,7 +72,7 @@ void print_scene(const SceneResult& r, const std::string& picture) {
                 "    the unexplained pixels lie in x %d..%d, y %d..%d (column, row from the top-left)\n",
                 b.left, b.right, b.top, b.bottom);
         for (const PixelDifference& d : j.first_unexplained)
-            std::printf("    (%d, %d): key %s, got %s\n", d.x, d.y, rgb(d.key).c_str(), rgb(d.got).c_str());
+            std::printf("    %s\n", describe_pixel(d).c_str());
         if (j.unexplained > static_cast<long long>(j.first_unexplained.size()))
             std::printf("    ... and %lld more\n",
                         j.unexplained - static_cast<long long>(j.first_unexplained.size()));

@@ -19,5 +19,7 @@ std::string print_summary(const std::vector<SceneResult>& results);
 
 // "3 pixels differ: 3 off by one level (allowed)"-style sentence of a judgement.
 std::string describe_differences(const Judgement& judgement);
+// "(375, 200): key 0 0 0, got 0 0 255", and the other outcome of a known ambiguous pixel.
+std::string describe_pixel(const PixelDifference& difference);
 
 }  // namespace grade

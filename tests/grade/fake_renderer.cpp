@@ -14,6 +14,8 @@
 //   straggler   the key, leaving a process running (POSIX; its pid to FAKE_RENDERER_PID_FILE)
 //   trailing    the key with 5 bytes after its pixels
 //   dozen_steps the key with 12 pixels one level off, the most the rule allows
+//   ambiguous_sides  the key with keyShadow's ambiguous (400, 150) showing its other
+//               outcome, and (375, 200) showing neither
 //   sparse_tail the key with 64 GiB after its pixels (sparse: no disk; POSIX tests only)
 //   endless_comment  "P6\n#" and a comment of 64 GiB (sparse; POSIX tests only)
 //   waits_for_enter  the key, then reads standard input to its end
@@ -195,6 +197,12 @@ int main(int argc, char** argv) {
     }
     if (mode == "one_level")
         for (std::uint8_t& v : image.rgb) v = static_cast<std::uint8_t>(v == 255 ? 254 : v + 1);
+    if (mode == "ambiguous_sides") {  // keyShadow's (400, 150) and (375, 200), tangent to s1
+        std::uint8_t* const other = &image.rgb[3 * (static_cast<std::size_t>(image.width) * 150 + 400)];
+        other[0] = other[1] = other[2] = 255;  // the miss: its other outcome
+        std::uint8_t* const third = &image.rgb[3 * (static_cast<std::size_t>(image.width) * 200 + 375)];
+        third[0] = third[1] = 0, third[2] = 255;  // neither outcome
+    }
     if (mode == "dozen_steps")
         for (std::size_t x = 0; x < 12; ++x) {  // row 300, columns 0-11, red
             std::uint8_t& red = image.rgb[3 * (static_cast<std::size_t>(image.width) * 300 + x)];

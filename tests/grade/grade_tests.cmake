@@ -2,7 +2,7 @@
 # The programs are built always (clang-tidy reads every source); the tests need the course
 # scenes and keys, as the golden tests do, and are left out where those are absent.
 set(fake_modes black pixel64 one_level hang segfault exit1 wrong_size wrong_name p3 shifted huge_header escapes lax_header
-               straggler trailing dozen_steps sparse_tail endless_comment waits_for_enter endless_stderr fifo_output
+               straggler trailing dozen_steps ambiguous_sides sparse_tail endless_comment waits_for_enter endless_stderr fifo_output
                readonly_folder)
 foreach(mode ${fake_modes})
   add_executable(fake_${mode} grade/fake_renderer.cpp)
@@ -54,6 +54,8 @@ grade_test(pixel64 pixel64 1 "1 pixel differs from the key; 1 unexplained, large
 # A dozen pixels one level off pass; every pixel one level off (rounding, not truncating)
 # does not.
 grade_test(dozen-steps dozen_steps 0 "testShadow                  12           0|marks 24/24: all 12 scenes pass: PASS")
+# A known ambiguous pixel may show its other outcome, not a third colour.
+grade_test(ambiguous-sides ambiguous_sides 1 "testShadow                   2           1|2 pixels differ from the key; 1 known ambiguous showing the other outcome (allowed); 1 unexplained, largest 255 levels|(375, 200): key 0 0 0, got 0 0 255 (a known ambiguous pixel: its other outcome is 255 255 255)" --only testShadow)
 grade_test(one-level one_level 1 "testShadow              360000           0|360000 pixels differ from the key; 360000 by one level, more than the 12 truncation steps allowed|marks 0/24: 0 of 12 scenes pass; 12 differ beyond the rule: FAIL")
 grade_test(hang hang 1 "still running after 1 s (--timeout): killed|marks 0/2" --timeout 1 --only testAmbient)
 grade_test(segfault segfault 1 "testSample|${segfault_message}|marks 0/24: 0 of 12 scenes pass; 12 gave no image to compare: FAIL")

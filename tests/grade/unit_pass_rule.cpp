@@ -1,5 +1,6 @@
 // The pass rule of SPEC section 7: which differing pixels a scene may have, and what the
 // grader reports about the others.
+#include <array>
 #include <cstdint>
 #include <string>
 
@@ -60,6 +61,7 @@ TEST(two_levels_in_one_channel_of_one_pixel_fails_and_is_located) {
     CHECK(j.unexplained_box.top == 3 && j.unexplained_box.bottom == 3);
     CHECK(j.first_unexplained.size() == 1 && j.first_unexplained[0].x == 7 && j.first_unexplained[0].y == 3);
     CHECK(j.first_unexplained[0].key[2] == 50 && j.first_unexplained[0].got[2] == 52);
+    CHECK(!j.first_unexplained[0].ambiguous);
 }
 
 TEST(a_known_ambiguous_pixel_may_show_its_other_outcome_but_only_in_its_own_key) {
@@ -76,6 +78,8 @@ TEST(a_known_ambiguous_pixel_may_show_its_other_outcome_but_only_in_its_own_key)
     set(got, 400, 150, 1, 253);  // two levels from it, and from the key: neither outcome
     const grade::Judgement two = grade::judge("keyShadow", key, got);
     CHECK(!two.passed() && two.unexplained == 1 && two.ambiguous == 0);
+    CHECK(two.first_unexplained.size() == 1 && two.first_unexplained[0].ambiguous);
+    CHECK((two.first_unexplained[0].other == std::array<std::uint8_t, 3>{255, 255, 255}));
     set(got, 400, 150, 1, 255);
     set(got, 401, 150, 0, 0);  // its neighbour is not ambiguous
     CHECK(!grade::judge("keyShadow", key, got).passed());
