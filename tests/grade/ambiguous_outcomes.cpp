@@ -32,7 +32,6 @@
 #include "raytracer/parser.h"
 #include "raytracer/ppm.h"
 #include "raytracer/reference/brute_force.h"
-#include "raytracer/reference/spec_rules.h"
 #include "raytracer/reference/whitted.h"
 
 namespace {
