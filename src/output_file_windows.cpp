@@ -1,12 +1,10 @@
 // The image's file on Windows (output_file.cpp): a named temporary that the system
 // deletes when its handle closes until commit() renames it over the target through
 // that handle.
-#ifndef NOMINMAX
-#define NOMINMAX
-#endif
+#include "raytracer/windows_api.h"  // first: before anything that may include <windows.h>
+
 #include <fcntl.h>
 #include <io.h>
-#include <windows.h>
 
 #include <cerrno>
 #include <cstdint>

@@ -15,10 +15,7 @@
 #include "raytracer/standard_streams.h"
 
 #ifdef _WIN32
-#ifndef NOMINMAX
-#define NOMINMAX
-#endif
-#include <windows.h>
+#include "raytracer/windows_api.h"
 #else
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -30,8 +27,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// What is at a path now, as far as choosing how to write it goes.
-enum class Existing { Nothing, RegularFile, Folder, Other };
+// What is at a path now, as far as choosing how to write it goes: Pipe is a FIFO or a
+// socket, Other a device or anything else that is not a regular file.
+enum class Existing { Nothing, RegularFile, Folder, Pipe, Other };
 
 #ifdef _WIN32
 // The folder's path with the links and junctions on the way resolved: the one the system
@@ -119,6 +117,7 @@ Existing what_is_at(const std::string& path) {
     const fs::file_status status = fs::status(fs::u8path(path), ec);
     if (ec || status.type() == fs::file_type::not_found) return Existing::Nothing;
     if (status.type() == fs::file_type::directory) return Existing::Folder;
+    if (status.type() == fs::file_type::fifo || status.type() == fs::file_type::socket) return Existing::Pipe;
     return status.type() == fs::file_type::regular ? Existing::RegularFile : Existing::Other;
 }
 #else
@@ -185,6 +184,7 @@ Existing what_is_at(const std::string& path) {
     struct stat s {};
     if (::stat(path.c_str(), &s) != 0) return Existing::Nothing;
     if (S_ISDIR(s.st_mode)) return Existing::Folder;
+    if (S_ISFIFO(s.st_mode) || S_ISSOCK(s.st_mode)) return Existing::Pipe;
     return S_ISREG(s.st_mode) ? Existing::RegularFile : Existing::Other;
 }
 #endif
@@ -291,13 +291,10 @@ OutputChoice choose_output(const std::string& scene_output, const std::string* u
     // the one is read, the other carries the messages; nor is a pipe that is standard
     // input written (this process holds its reading end: a pipe's worth would block it
     // for good). A device such as /dev/null is written into as usual.
-    std::error_code ec;
-    const fs::file_type type = fs::status(fs::u8path(choice.path), ec).type();
-    const bool pipe = type == fs::file_type::fifo || type == fs::file_type::socket;
     for (const auto& [stream, what] :
          {std::pair<int, const char*>{0, "standard input, which is read"},
           std::pair<int, const char*>{2, "standard error, where the messages go"}}) {
-        if ((existing == Existing::RegularFile || (stream == 0 && pipe)) &&
+        if ((existing == Existing::RegularFile || (stream == 0 && existing == Existing::Pipe)) &&
             standard_stream_is(stream, choice.path)) {
             choice.refusal =
                 shown(choice.path, kMaxShownPath) + " is " + what + ", expected another file for the image";
@@ -309,7 +306,7 @@ OutputChoice choose_output(const std::string& scene_output, const std::string* u
         if (!why.empty()) choice.refusal = shown(choice.path, kMaxShownPath) + why;
         return choice;
     }
-    if (existing == Existing::Other) {
+    if (existing == Existing::Pipe || existing == Existing::Other) {
         if (choice.named_by_user) {
             choice.destination = Destination::WriteInto;  // a device or FIFO the user chose
         } else {

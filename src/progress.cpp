@@ -7,11 +7,8 @@
 #include "raytracer/interrupts.h"
 
 #ifdef _WIN32
-#ifndef NOMINMAX
-#define NOMINMAX
-#endif
 #include <io.h>
-#include <windows.h>
+#include "raytracer/windows_api.h"
 #else
 #include <sys/ioctl.h>
 #include <unistd.h>

@@ -7,10 +7,7 @@
 #include "raytracer/shown.h"
 
 #ifdef _WIN32
-#ifndef NOMINMAX
-#define NOMINMAX
-#endif
-#include <windows.h>
+#include "raytracer/windows_api.h"
 #else
 #include <sys/stat.h>
 #endif

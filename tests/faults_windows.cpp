@@ -5,10 +5,7 @@
 // working folder.
 #include "check.h"
 
-#ifndef NOMINMAX
-#define NOMINMAX
-#endif
-#include <windows.h>
+#include "raytracer/windows_api.h"
 
 #include <string>
 #include <utility>

@@ -8,11 +8,8 @@
 #include <string>
 
 #ifdef _WIN32
-#ifndef NOMINMAX
-#define NOMINMAX
-#endif
 #include <io.h>  // _wunlink
-#include <windows.h>
+#include "raytracer/windows_api.h"
 #endif
 
 #include "check.h"
