@@ -164,9 +164,6 @@ void note_if_slow(SceneResult& result) {
                                ")");
 }
 
-}  // namespace
-
-namespace {
 // Gives the owner every permission on each folder under folder and write permission on
 // each file (not through symbolic links), so that what a run made write-protected
 // ("chmod 500 sub", a copy of a read-only folder; on Windows a read-only file) can be
