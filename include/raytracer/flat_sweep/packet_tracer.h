@@ -80,15 +80,15 @@ public:
         // a few ellipsoids, where the tree, whose boxes grow for thin ellipsoids, is far
         // faster (kUnculledEllipsoids).
         screen_rects_ = screen_bounds(scene, bounds_.spheres(), culls_eye_rays());
-        const bool any_seen = std::any_of(screen_rects_.begin(), screen_rects_.end(), [](const PixelRect& r) {
+        any_seen_ = std::any_of(screen_rects_.begin(), screen_rects_.end(), [](const PixelRect& r) {
             return r.first_column <= r.last_column && r.first_row <= r.last_row;
         });
         const double pixels = double(scene.columns) * double(scene.rows);
         const double n = double(ellipsoids_.size());
         const bool guarded = everything_guarded();
-        can_render_ = !any_seen || (pixels >= n * n && ellipsoids_.size() <= WideSet::kCapacity &&
-                                    (guarded || ellipsoids_.size() <= kUnculledEllipsoids));
-        culling_tables_ = any_seen && can_render_ && guarded;
+        can_render_ = !any_seen_ || (pixels >= n * n && ellipsoids_.size() <= WideSet::kCapacity &&
+                                     (guarded || ellipsoids_.size() <= kUnculledEllipsoids));
+        culling_tables_ = any_seen_ && can_render_ && guarded;
         if (culling_tables_) {
             std::vector<Vec3<C>> positions;
             for (const PointLight<Real>& l : lights_) positions.push_back(Vec3<C>::from(l.position));
@@ -118,6 +118,8 @@ public:
 
     // Per ellipsoid, the pixels outside which no eye ray meets it (screen_bounds.h).
     const std::vector<PixelRect>& screen_rects() const { return screen_rects_; }
+    // Whether some pixel may see an ellipsoid: else every pixel is the background.
+    bool sees_any() const { return any_seen_; }
 
     // Up to kPacket eye-ray hits on ellipsoid i at once: pixel k < count looks along
     // (dx[k], dy[k], dz[k]) and meets the ellipsoid first at t[k] (inside[k]: the far
@@ -231,6 +233,7 @@ private:
     SphereBounds<Real> bounds_;
     std::vector<MappedOrigin<Real>> eye_origin_;  // per ellipsoid, of the camera
     std::vector<PixelRect> screen_rects_;         // per ellipsoid
+    bool any_seen_ = false;                       // some rect holds a pixel
     bool can_render_ = false;
     bool culling_tables_ = false;  // light_cones_ built and exact
     Enclosures<Real> enclosures_;
