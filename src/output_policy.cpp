@@ -31,6 +31,11 @@ namespace fs = std::filesystem;
 // socket, Other a device or anything else that is not a regular file.
 enum class Existing { Nothing, RegularFile, Folder, Pipe, Other };
 
+// Where a folder lies against the working folder (place_of()): in it or below it, elsewhere,
+// not there (nothing to leave through: the image's file says it is missing), or not known
+// (a step of the way cannot be opened).
+enum class FolderPlace { Inside, Outside, Missing, Unknown };
+
 #ifdef _WIN32
 // The folder's path with the links and junctions on the way resolved: the one the system
 // gives it once opened (some standard libraries' fs::canonical leaves links as they are
@@ -48,6 +53,26 @@ bool resolved_folder(const fs::path& folder, fs::path& resolved) {
     path.resize(size);
     resolved = path;
     return true;
+}
+
+// Where a folder named relative to the working folder lies, its links and junctions
+// followed: its resolved path against the working folder's.
+FolderPlace place_of(const fs::path& folder, int& error) {
+    std::error_code ec;
+    const fs::path current = fs::current_path(ec);
+    fs::path resolved, working;
+    if (!resolved_folder(folder, resolved)) {
+        error = static_cast<int>(GetLastError());
+        return error == ERROR_FILE_NOT_FOUND || error == ERROR_PATH_NOT_FOUND ? FolderPlace::Missing
+                                                                              : FolderPlace::Unknown;
+    }
+    if (ec || !resolved_folder(current, working)) {
+        error = ec ? ec.value() : static_cast<int>(GetLastError());
+        return FolderPlace::Unknown;
+    }
+    const auto [mismatch, ignored] =
+        std::mismatch(working.begin(), working.end(), resolved.begin(), resolved.end());
+    return mismatch == working.end() ? FolderPlace::Inside : FolderPlace::Outside;
 }
 
 // The names of a path after its root ("C:\\"); none for a path that is not UTF-8
@@ -174,10 +199,51 @@ std::string unreplaceable(const std::string& path) {
     return {};
 }
 
-bool resolved_folder(const fs::path& folder, fs::path& resolved) {
-    std::error_code ec;
-    resolved = fs::canonical(folder, ec);
-    return !ec;
+// Where a folder named relative to the working folder lies, its links followed: walked up
+// by its "..", folder by folder, until the working folder (by device and inode) or the
+// root. WHY by identity and not by resolved path: a resolved path may be longer than the
+// system's PATH_MAX (deep folders, long links), where fs::canonical() fails, and the
+// check must not pass where it cannot be made. O_PATH (Linux) opens a folder this user
+// may not read, as the walk only needs its identity.
+#ifdef O_PATH
+constexpr int kFolderOnly = O_PATH | O_DIRECTORY | O_CLOEXEC;
+#else
+constexpr int kFolderOnly = O_RDONLY | O_DIRECTORY | O_CLOEXEC;
+#endif
+FolderPlace place_of(const fs::path& folder, int& error) {
+    struct stat working {};
+    struct stat here {};
+    struct stat above {};
+    int fd = ::open(folder.c_str(), kFolderOnly);
+    if (fd < 0) {
+        error = errno;
+        return error == ENOENT || error == ENOTDIR ? FolderPlace::Missing : FolderPlace::Unknown;
+    }
+    if (::stat(".", &working) != 0 || ::fstat(fd, &here) != 0) {
+        error = errno;
+        ::close(fd);
+        return FolderPlace::Unknown;
+    }
+    for (;;) {
+        if (here.st_dev == working.st_dev && here.st_ino == working.st_ino) {
+            ::close(fd);
+            return FolderPlace::Inside;
+        }
+        const int up = ::openat(fd, "..", kFolderOnly);
+        error = errno;
+        ::close(fd);
+        if (up < 0) return FolderPlace::Unknown;
+        if (::fstat(up, &above) != 0) {
+            error = errno;
+            ::close(up);
+            return FolderPlace::Unknown;
+        }
+        if (above.st_dev == here.st_dev && above.st_ino == here.st_ino) {  // the root is its own ".."
+            ::close(up);
+            return FolderPlace::Outside;
+        }
+        fd = up, here = above;
+    }
 }
 
 Existing what_is_at(const std::string& path) {
@@ -211,21 +277,21 @@ std::string outside_working_folder(const std::string& output) {
                    " leaves the working folder ('..'), expected a file name in or below it" + elsewhere;
     // A folder on the way may be a symbolic link out of the working folder. Asked of the
     // file system only for names with a folder (a bare file name costs nothing).
-    if (path.has_parent_path()) {
-        std::error_code ec;
-        const fs::path current = fs::current_path(ec);
-        fs::path folder, working;
-        if (!ec && resolved_folder(path.parent_path(), folder) && resolved_folder(current, working)) {
-            const auto [mismatch, ignored] =
-                std::mismatch(working.begin(), working.end(), folder.begin(), folder.end());
-            if (mismatch != working.end())
-                return shown(output, kMaxShownPath) +
-                       " leaves the working folder through a symbolic link, expected a file name in or below "
-                       "it" +
-                       elsewhere;
-        }
+    if (!path.has_parent_path()) return {};
+    int error = 0;
+    switch (place_of(path.parent_path(), error)) {
+        case FolderPlace::Inside:
+        case FolderPlace::Missing:
+            return {};
+        case FolderPlace::Outside:
+            return shown(output, kMaxShownPath) +
+                   " leaves the working folder through a symbolic link, expected a file name in or below it" +
+                   elsewhere;
+        case FolderPlace::Unknown:
+            break;
     }
-    return {};
+    return shown(output, kMaxShownPath) + " cannot be checked to stay in the working folder (" +
+           std::system_category().message(error) + "), expected a file name in or below it" + elsewhere;
 }
 
 // Why the path itself, whatever is there, cannot be the image's, or empty: a name the

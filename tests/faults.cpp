@@ -2,6 +2,7 @@
 // process: signals sent mid-render, a file-size limit, permissions kept, long names,
 // devices and FIFOs, the scene file named as OUTPUT through other names, and the
 // progress line on a pseudo-terminal. POSIX's: faults_windows.cpp holds Windows'.
+#include <dirent.h>
 #include <fcntl.h>
 #include <grp.h>
 #include <sys/ioctl.h>
@@ -13,6 +14,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <climits>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -584,6 +586,13 @@ TEST(a_loop_of_symbolic_links_is_not_called_missing) {
     err = captured_stderr(folder);
     CHECK(err.find("does not exist") == std::string::npos);
     CHECK(err.find("its folder 'loop' cannot be reached") != std::string::npos);
+    // A scene's OUTPUT there: where the way cannot be followed, it is not known to stay in
+    // the working folder, and is refused as such.
+    write_bytes(folder.work / "scene.txt", small_scene("loop/out.ppm"));
+    CHECK_EQ(run(folder, {"scene.txt"}), 3);
+    CHECK(captured_stderr(folder).find(
+              "OUTPUT 'loop/out.ppm' cannot be checked to stay in the working folder (" +
+              std::string(std::strerror(ELOOP)) + ")") != std::string::npos);
 }
 
 // -o - > both.ppm 2>&1 --progress: the progress line would go into the image, so it is
@@ -699,6 +708,69 @@ TEST(a_symbolic_link_out_of_the_working_folder_is_outside_it) {
     write_bytes(folder.work / "scene.txt", small_scene("alias/out.ppm"));  // a link that stays inside
     CHECK_EQ(run(folder, {"scene.txt"}), 0);
     CHECK(fs::exists(folder.work / "inside" / "out.ppm"));
+}
+
+// Folders dd/dd/... `levels` deep below the folder `top` holds open, made one at a time
+// by handle: their path may be longer than PATH_MAX, which calls by path refuse. Removed
+// with all they hold, deepest first, when it goes (fs::remove_all() cannot reach them).
+class DeepFolders {
+public:
+    DeepFolders(int top, int levels) {
+        fds_.push_back(dup(top));
+        for (int i = 0; i < levels; ++i) {
+            CHECK(mkdirat(fds_.back(), "dd", 0755) == 0);
+            fds_.push_back(openat(fds_.back(), "dd", O_RDONLY | O_DIRECTORY | O_CLOEXEC));
+            CHECK(fds_.back() >= 0);
+        }
+    }
+    DeepFolders(const DeepFolders&) = delete;
+    DeepFolders& operator=(const DeepFolders&) = delete;
+    ~DeepFolders() {
+        for (std::size_t i = fds_.size() - 1; i > 0; --i) {
+            remove_files(fds_[i]);
+            close(fds_[i]);
+            unlinkat(fds_[i - 1], "dd", AT_REMOVEDIR);
+        }
+        close(fds_[0]);
+    }
+    int at(int level) const { return fds_[static_cast<std::size_t>(level)]; }
+
+private:
+    static void remove_files(int folder) {
+        DIR* entries = fdopendir(dup(folder));
+        if (entries == nullptr) return;
+        while (const dirent* e = readdir(entries))
+            if (std::strcmp(e->d_name, ".") != 0 && std::strcmp(e->d_name, "..") != 0)
+                unlinkat(folder, e->d_name, 0);  // a folder (dd) stays: unlinkat() without AT_REMOVEDIR
+        closedir(entries);
+    }
+    std::vector<int> fds_;
+};
+
+// The way out is found by following the links, not by resolving the whole path: through
+// a link whose resolved path is longer than PATH_MAX (where fs::canonical() fails), the
+// scene is still refused, and nothing is written there.
+TEST(a_symbolic_link_out_is_found_however_long_its_resolved_path) {
+    const Scratch folder;
+    fs::create_directories(folder.root / "elsewhere");
+    const int elsewhere = open((folder.root / "elsewhere").c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    CHECK(elsewhere >= 0);
+    {
+        const DeepFolders deep(elsewhere, 1500);
+        std::string middle = (folder.root / "elsewhere").string(), rest;  // 1000 levels, and 500 more
+        for (int i = 0; i < 1000; ++i) middle += "/dd";
+        for (int i = 0; i < 500; ++i) rest += "dd/";
+        CHECK(symlinkat(rest.c_str(), deep.at(1000), "more") == 0);  // 1500 levels: over 4500 bytes
+        fs::create_directory_symlink(middle + "/more", folder.work / "far");
+        CHECK(middle.size() + 4 + rest.size() > PATH_MAX);
+        write_bytes(folder.work / "scene.txt", small_scene("far/out.ppm"));
+        CHECK_EQ(run(folder, {"scene.txt"}), 3);
+        CHECK(
+            captured_stderr(folder).find("OUTPUT 'far/out.ppm' leaves the working folder through a symbolic "
+                                         "link") != std::string::npos);
+        CHECK(faccessat(deep.at(1500), "out.ppm", F_OK, 0) != 0);
+    }
+    close(elsewhere);
 }
 
 // A pseudo-terminal: the program is given `terminal`, the test reads what it shows from
