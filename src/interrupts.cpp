@@ -11,30 +11,35 @@
 #include <thread>
 
 #ifdef _WIN32
-#include <io.h>  // _unlink, _write
+#include <io.h>  // _write
 #include <stdlib.h>
 #else
-#include <unistd.h>  // unlink, write, _exit, pause
+#include <fcntl.h>   // unlinkat
+#include <unistd.h>  // write, _exit, pause
 #endif
 
 namespace rt {
 namespace {
 
 // The handlers read only these, take `phase` below by a compare-exchange, and call only
-// unlink, write and _exit (end_on_signal(): signal, raise and pause; on Windows,
-// signal() to stay installed), which are async-signal-safe. A path is copied into
-// cleanup_path before cleanup_set is raised, so a handler never sees half a path: the
-// flags are lock-free atomics, stored with release and loaded with acquire, as a handler
-// may run on another thread than the one that sets them (on Windows a thread of its own;
-// elsewhere the main thread, or a helper for the ending signals), where a fence for
-// signals alone would not order the path before the flag.
+// unlinkat (_wunlink on Windows), write and _exit (end_on_signal(): signal, raise and
+// pause; on Windows, signal() to stay installed), which are async-signal-safe. A name
+// is copied into cleanup_path before cleanup_set is raised, so a handler never sees
+// half a name: the flags are lock-free atomics, stored with release and loaded with
+// acquire, as a handler may run on another thread than the one that sets them (on
+// Windows a thread of its own; elsewhere the main thread, or a helper for the ending
+// signals), where a fence for signals alone would not order the name before the flag.
 static_assert(std::atomic<int>::is_always_lock_free, "a signal handler may use only lock-free atomics");
 constexpr std::size_t kMaxPath = 4096;
-char cleanup_path[kMaxPath];
 #ifdef _WIN32
 wchar_t cleanup_wide_path[kMaxPath];
+#else
+char cleanup_path[kMaxPath];
 #endif
-std::atomic<int> cleanup_set{0};  // 1: cleanup_path, 2: cleanup_wide_path
+std::atomic<int> cleanup_set{0};  // 1: a name is set
+#ifndef _WIN32
+std::atomic<int> cleanup_folder{-1};  // the folder cleanup_path is in (unlinkat())
+#endif
 // The progress line's length (0: none). The handler erases the line by overwriting it:
 // "\r", that many spaces, "\r", which every terminal and the Windows console understand
 // (an ANSI "erase line" is not understood by older consoles). The spaces are a constant,
@@ -74,6 +79,16 @@ void say(const char* text, std::size_t length) {
 }
 void say(const char* text) { say(text, std::strlen(text)); }
 
+// Removes the named temporary a cleanup is set for, if any (from a handler).
+void remove_cleanup_file() {
+    if (cleanup_set.load(std::memory_order_acquire) == 0) return;
+#ifdef _WIN32
+    (void)_wunlink(cleanup_wide_path);
+#else
+    (void)unlinkat(cleanup_folder.load(std::memory_order_relaxed), cleanup_path, 0);
+#endif
+}
+
 extern "C" void render_on_interrupt(int signal_number) {
     int running = kRunning;
     if (!phase.compare_exchange_strong(running, kInterrupted)) {  // the image is (being) put in place
@@ -82,13 +97,7 @@ extern "C" void render_on_interrupt(int signal_number) {
 #endif
         return;
     }
-#ifdef _WIN32
-    const int cleanup = cleanup_set.load(std::memory_order_acquire);
-    if (cleanup == 1) (void)_unlink(cleanup_path);
-    if (cleanup == 2) (void)_wunlink(cleanup_wide_path);
-#else
-    if (cleanup_set.load(std::memory_order_acquire) != 0) (void)unlink(cleanup_path);
-#endif
+    remove_cleanup_file();
     if (const int erase = erase_length.load(std::memory_order_relaxed); erase > 0) {
         say(kBlanks.text, 1 + static_cast<std::size_t>(erase));
         say("\r");
@@ -110,7 +119,7 @@ extern "C" void render_on_interrupt(int signal_number) {
 extern "C" void end_on_signal(int signal_number) {
     int running = kRunning;  // not once the image is being put in place
     if (phase.compare_exchange_strong(running, kInterrupted)) {
-        if (cleanup_set.load(std::memory_order_acquire) != 0) (void)unlink(cleanup_path);
+        remove_cleanup_file();
     } else if (running == kInterrupted) {
         for (;;) pause();  // another handler is ending the run, its temporary first
     }
@@ -179,22 +188,23 @@ void release_interrupts() {
 
 void clear_interrupt_cleanup() { cleanup_set.store(0, std::memory_order_release); }
 
-bool set_interrupt_cleanup(const char* path) {
+#ifndef _WIN32
+bool set_interrupt_cleanup(int folder, const char* name) {
     cleanup_set.store(0, std::memory_order_release);
-    const std::size_t length = std::strlen(path);
+    const std::size_t length = std::strlen(name);
     if (length >= kMaxPath) return false;
-    std::memcpy(cleanup_path, path, length + 1);
-    cleanup_set.store(1, std::memory_order_release);  // the path is complete before the flag
+    std::memcpy(cleanup_path, name, length + 1);
+    cleanup_folder.store(folder, std::memory_order_relaxed);
+    cleanup_set.store(1, std::memory_order_release);  // the name and folder are set before the flag
     return true;
 }
-
-#ifdef _WIN32
+#else
 bool set_interrupt_cleanup(const wchar_t* path) {
     cleanup_set.store(0, std::memory_order_release);
     const std::size_t length = std::wcslen(path);
     if (length >= kMaxPath) return false;
     std::wmemcpy(cleanup_wide_path, path, length + 1);
-    cleanup_set.store(2, std::memory_order_release);  // the path is complete before the flag
+    cleanup_set.store(1, std::memory_order_release);  // the path is complete before the flag
     return true;
 }
 #endif

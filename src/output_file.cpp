@@ -63,8 +63,10 @@ std::string cannot_create(const std::string& name, const fs::path& folder, int e
     return start + std::strerror(error);
 }
 
-PendingFile::PendingFile(const char* file_name, Destination destination)
-    : name_(file_name == nullptr ? "" : file_name), destination_(destination) {
+PendingFile::PendingFile(const char* file_name, Destination destination, bool within_working_folder)
+    : name_(file_name == nullptr ? "" : file_name),
+      destination_(destination),
+      within_working_folder_(within_working_folder) {
     if (destination_ == Destination::StandardOutput) {
         if (name_.empty()) name_ = "-";  // else as the user named it (-o /dev/stdout)
 #ifdef _WIN32
@@ -99,7 +101,12 @@ PendingFile::PendingFile(const char* file_name, Destination destination)
     }
 }
 
-PendingFile::~PendingFile() { discard(); }
+PendingFile::~PendingFile() {
+    discard();
+#ifndef _WIN32
+    if (folder_ >= 0) ::close(folder_);
+#endif
+}
 
 // Around each write to a stream (standard output, a FIFO, a device): from the first on,
 // an interrupt says the image is incomplete rather than not written; once the last
@@ -136,8 +143,7 @@ void PendingFile::discard() {
     if (!open_) return;
     close_file();
     if (!temporary_.empty()) {
-        std::error_code ignored;
-        fs::remove(temporary_, ignored);
+        remove_temporary();
         clear_interrupt_cleanup();
     }
 }

@@ -12,6 +12,7 @@
 #include <system_error>
 
 #include "output_file_parts.h"
+#include "raytracer/folder_place.h"
 #include "raytracer/interrupts.h"
 #include "raytracer/output_file.h"
 #include "raytracer/shown.h"
@@ -20,20 +21,24 @@ namespace rt {
 
 namespace fs = std::filesystem;
 
-namespace {
-
-// Renames from over to, replacing it; on failure, false and why in error.
-bool replace_file(const fs::path& from, const fs::path& to, std::string& error) {
-    if (std::rename(from.c_str(), to.c_str()) == 0) return true;
-    error = std::strerror(errno);
-    return false;
-}
-
-}  // namespace
-
 void PendingFile::open_replacement() {
+    const fs::path target(target_);
+    const NativePath folder = folder_of(target).native();
+    folder_ = open_folder(folder.c_str());
+    if (folder_ < 0) {
+        error_ = cannot_create(name_, folder, errno);
+        return;
+    }
+    // The same check as choose_output()'s, now on the folder every later step uses.
+    int place_error = 0;
+    if (within_working_folder_ && place_of(folder_, place_error) != FolderPlace::Inside) {
+        error_ = shown(name_, kMaxShownPath) + " cannot be created: its folder is not in the working folder";
+        return;
+    }
+    target_ = target.filename().native();
+    if (target_.empty()) target_ = ".";  // "/": the folder itself
     struct stat existing {};
-    if (::stat(target_.c_str(), &existing) == 0) {
+    if (::fstatat(folder_, target_.c_str(), &existing, 0) == 0) {
         if (S_ISDIR(existing.st_mode)) {
             error_ = shown(name_, kMaxShownPath) + " is a folder";
             return;
@@ -46,7 +51,6 @@ void PendingFile::open_replacement() {
         // Not set-user-ID, set-group-ID or sticky: an image is no program.
         keep_mode_ = existing.st_mode & 0777;
     }
-    const NativePath folder = folder_of(target_).native();
     if (!open_unnamed(folder)) open_named(folder);
     if (open_ && replaces_) {
         // Its owner and group too, where this user may give them (root replacing another
@@ -61,7 +65,7 @@ bool PendingFile::open_unnamed(const NativePath& folder) {
     // The tests set this to exercise the named temporary of other systems here.
     const char* named = std::getenv("RAYTRACER_NAMED_TEMPORARY");
     if (named != nullptr && std::strcmp(named, "1") == 0) return false;
-    fd_ = ::open(folder.c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666);
+    fd_ = ::openat(folder_, ".", O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666);
     if (fd_ >= 0) {
         open_ = unnamed_ = true;
         return true;
@@ -77,19 +81,30 @@ bool PendingFile::open_unnamed(const NativePath& folder) {
 }
 
 void PendingFile::open_named(const NativePath& folder) {
-    temporary_ = temporary_name_in(folder).native();
-    if (!set_interrupt_cleanup(temporary_.c_str())) {
+    temporary_ = temporary_name_in({}).native();
+    if (!set_interrupt_cleanup(folder_, temporary_.c_str())) {
         error_ = shown(name_, kMaxShownPath) + " cannot be created: its path is too long";
         return;
     }
-    fd_ = ::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    fd_ = ::openat(folder_, temporary_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
     if (fd_ < 0) {
         const int error = errno;
         clear_interrupt_cleanup();
+        temporary_.clear();
         error_ = cannot_create(name_, folder, error);
         return;
     }
     open_ = true;
+}
+
+void PendingFile::remove_temporary() { (void)::unlinkat(folder_, temporary_.c_str(), 0); }
+
+// Renames the temporary over the target, in the folder held open; on failure, false and
+// why in error.
+bool PendingFile::replace_target(std::string& error) {
+    if (::renameat(folder_, temporary_.c_str(), folder_, target_.c_str()) == 0) return true;
+    error = std::strerror(errno);
+    return false;
 }
 
 // Gives the unnamed file its name. A new target is linked in one step; an existing one
@@ -98,11 +113,11 @@ void PendingFile::open_named(const NativePath& folder) {
 // temporary.
 bool PendingFile::link_unnamed(std::string& error) {
     const std::string proc_path = "/proc/self/fd/" + std::to_string(fd_);
-    auto link_as = [&](const fs::path& name) {
-        if (::linkat(AT_FDCWD, proc_path.c_str(), AT_FDCWD, name.c_str(), AT_SYMLINK_FOLLOW) == 0) return 0;
+    auto link_as = [&](const NativePath& name) {
+        if (::linkat(AT_FDCWD, proc_path.c_str(), folder_, name.c_str(), AT_SYMLINK_FOLLOW) == 0) return 0;
 #ifdef AT_EMPTY_PATH
         if (errno == ENOENT &&  // no /proc: the same by the descriptor (needs privilege)
-            ::linkat(fd_, "", AT_FDCWD, name.c_str(), AT_EMPTY_PATH) == 0)
+            ::linkat(fd_, "", folder_, name.c_str(), AT_EMPTY_PATH) == 0)
             return 0;
 #endif
         return errno;
@@ -115,8 +130,8 @@ bool PendingFile::link_unnamed(std::string& error) {
             return false;
         }
     }
-    temporary_ = temporary_name_in(folder_of(target_)).native();
-    if (!set_interrupt_cleanup(temporary_.c_str())) {
+    temporary_ = temporary_name_in({}).native();
+    if (!set_interrupt_cleanup(folder_, temporary_.c_str())) {
         error = "its path is too long";
         return false;
     }
@@ -126,7 +141,7 @@ bool PendingFile::link_unnamed(std::string& error) {
         clear_interrupt_cleanup();
         return false;
     }
-    return replace_file(temporary_, target_, error);
+    return replace_target(error);
 }
 
 void PendingFile::close_file() {
@@ -141,8 +156,7 @@ std::string PendingFile::put_in_place() {
     fd_ = -1;
     if (!closed) return shown(name_, kMaxShownPath) + " could not be written in full (is the disk full?)";
     std::string error;
-    if (!replace_file(temporary_, target_, error))
-        return shown(name_, kMaxShownPath) + " cannot be replaced: " + error;
+    if (!replace_target(error)) return shown(name_, kMaxShownPath) + " cannot be replaced: " + error;
     return {};
 }
 

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "output_file_parts.h"
+#include "raytracer/folder_place.h"
 #include "raytracer/interrupts.h"
 #include "raytracer/output_file.h"
 #include "raytracer/shown.h"
@@ -118,6 +119,14 @@ bool rename_over(HANDLE handle, const std::wstring& target, std::string& error) 
 }  // namespace
 
 void PendingFile::open_replacement() {
+    // choose_output()'s check once more, just before the file is made: by path, as the
+    // rename into place is (no folder handle to make them by here).
+    int place_error = 0;
+    if (within_working_folder_ &&
+        place_of(folder_of(target_).native(), place_error) == FolderPlace::Outside) {
+        error_ = shown(name_, kMaxShownPath) + " cannot be created: its folder is not in the working folder";
+        return;
+    }
     std::error_code ec;
     if (fs::is_directory(target_, ec)) {
         error_ = shown(name_, kMaxShownPath) + " is a folder";
@@ -128,6 +137,11 @@ void PendingFile::open_replacement() {
 }
 
 bool PendingFile::open_unnamed(const NativePath& /*folder*/) { return false; }
+
+void PendingFile::remove_temporary() {
+    std::error_code ignored;
+    fs::remove(temporary_, ignored);
+}
 
 void PendingFile::open_named(const NativePath& folder) {
     temporary_ = temporary_name_in(folder).native();

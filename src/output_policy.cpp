@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "raytracer/folder_place.h"
 #include "raytracer/output_file.h"
 #include "raytracer/parser.h"
 #include "raytracer/shown.h"
@@ -31,50 +32,7 @@ namespace fs = std::filesystem;
 // socket, Other a device or anything else that is not a regular file.
 enum class Existing { Nothing, RegularFile, Folder, Pipe, Other };
 
-// Where a folder lies against the working folder (place_of()): in it or below it, elsewhere,
-// not there (nothing to leave through: the image's file says it is missing), or not known
-// (a step of the way cannot be opened).
-enum class FolderPlace { Inside, Outside, Missing, Unknown };
-
 #ifdef _WIN32
-// The folder's path with the links and junctions on the way resolved: the one the system
-// gives it once opened (some standard libraries' fs::canonical leaves links as they are
-// here). False where the folder cannot be opened.
-bool resolved_folder(const fs::path& folder, fs::path& resolved) {
-    const HANDLE handle = CreateFileW(folder.c_str(), FILE_READ_ATTRIBUTES,
-                                      FILE_SHARE_READ | FILE_SHARE_WRITE | FILE_SHARE_DELETE, nullptr,
-                                      OPEN_EXISTING, FILE_FLAG_BACKUP_SEMANTICS, nullptr);
-    if (handle == INVALID_HANDLE_VALUE) return false;
-    std::wstring path(32768, L'\0');  // the longest path Windows has
-    const DWORD size = GetFinalPathNameByHandleW(handle, path.data(), static_cast<DWORD>(path.size()),
-                                                 FILE_NAME_NORMALIZED | VOLUME_NAME_DOS);
-    CloseHandle(handle);
-    if (size == 0 || size >= path.size()) return false;
-    path.resize(size);
-    resolved = path;
-    return true;
-}
-
-// Where a folder named relative to the working folder lies, its links and junctions
-// followed: its resolved path against the working folder's.
-FolderPlace place_of(const fs::path& folder, int& error) {
-    std::error_code ec;
-    const fs::path current = fs::current_path(ec);
-    fs::path resolved, working;
-    if (!resolved_folder(folder, resolved)) {
-        error = static_cast<int>(GetLastError());
-        return error == ERROR_FILE_NOT_FOUND || error == ERROR_PATH_NOT_FOUND ? FolderPlace::Missing
-                                                                              : FolderPlace::Unknown;
-    }
-    if (ec || !resolved_folder(current, working)) {
-        error = ec ? ec.value() : static_cast<int>(GetLastError());
-        return FolderPlace::Unknown;
-    }
-    const auto [mismatch, ignored] =
-        std::mismatch(working.begin(), working.end(), resolved.begin(), resolved.end());
-    return mismatch == working.end() ? FolderPlace::Inside : FolderPlace::Outside;
-}
-
 // The names of a path after its root ("C:\\"); none for a path that is not UTF-8
 // (PendingFile says so).
 std::vector<fs::path> names_of(const std::string& path) {
@@ -199,53 +157,6 @@ std::string unreplaceable(const std::string& path) {
     return {};
 }
 
-// Where a folder named relative to the working folder lies, its links followed: walked up
-// by its "..", folder by folder, until the working folder (by device and inode) or the
-// root. WHY by identity and not by resolved path: a resolved path may be longer than the
-// system's PATH_MAX (deep folders, long links), where fs::canonical() fails, and the
-// check must not pass where it cannot be made. O_PATH (Linux) opens a folder this user
-// may not read, as the walk only needs its identity.
-#ifdef O_PATH
-constexpr int kFolderOnly = O_PATH | O_DIRECTORY | O_CLOEXEC;
-#else
-constexpr int kFolderOnly = O_RDONLY | O_DIRECTORY | O_CLOEXEC;
-#endif
-FolderPlace place_of(const fs::path& folder, int& error) {
-    struct stat working {};
-    struct stat here {};
-    struct stat above {};
-    int fd = ::open(folder.c_str(), kFolderOnly);
-    if (fd < 0) {
-        error = errno;
-        return error == ENOENT || error == ENOTDIR ? FolderPlace::Missing : FolderPlace::Unknown;
-    }
-    if (::stat(".", &working) != 0 || ::fstat(fd, &here) != 0) {
-        error = errno;
-        ::close(fd);
-        return FolderPlace::Unknown;
-    }
-    for (;;) {
-        if (here.st_dev == working.st_dev && here.st_ino == working.st_ino) {
-            ::close(fd);
-            return FolderPlace::Inside;
-        }
-        const int up = ::openat(fd, "..", kFolderOnly);
-        error = errno;
-        ::close(fd);
-        if (up < 0) return FolderPlace::Unknown;
-        if (::fstat(up, &above) != 0) {
-            error = errno;
-            ::close(up);
-            return FolderPlace::Unknown;
-        }
-        if (above.st_dev == here.st_dev && above.st_ino == here.st_ino) {  // the root is its own ".."
-            ::close(up);
-            return FolderPlace::Outside;
-        }
-        fd = up, here = above;
-    }
-}
-
 Existing what_is_at(const std::string& path) {
     struct stat s {};
     if (::stat(path.c_str(), &s) != 0) return Existing::Nothing;
@@ -279,7 +190,7 @@ std::string outside_working_folder(const std::string& output) {
     // file system only for names with a folder (a bare file name costs nothing).
     if (!path.has_parent_path()) return {};
     int error = 0;
-    switch (place_of(path.parent_path(), error)) {
+    switch (place_of(path.parent_path().native(), error)) {
         case FolderPlace::Inside:
         case FolderPlace::Missing:
             return {};

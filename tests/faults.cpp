@@ -710,6 +710,47 @@ TEST(a_symbolic_link_out_of_the_working_folder_is_outside_it) {
     CHECK(fs::exists(folder.work / "inside" / "out.ppm"));
 }
 
+// Whether process pid holds a file open in folder (a link of /proc/<pid>/fd there: the
+// unnamed file of Linux shows as "folder/#inode (deleted)") within `tries` looks 5 ms apart.
+bool opens_a_file_in(pid_t pid, const fs::path& folder, int tries) {
+    const std::string prefix = folder.string() + "/";
+    for (int i = 0; i < tries; ++i) {
+        std::error_code ec;
+        for (const fs::directory_entry& fd :
+             fs::directory_iterator("/proc/" + std::to_string(pid) + "/fd", ec))
+            if (fs::read_symlink(fd.path(), ec).string().rfind(prefix, 0) == 0) return true;
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    return false;
+}
+
+// The OUTPUT's folder replaced mid-render by a link out of the working folder does not
+// move the image: it goes into the folder that was checked, under its new name, by the
+// descriptor held since, and nothing goes out (the unnamed file and the named temporary
+// alike). The render is stopped while the folder is swapped, before the image is put in
+// place.
+TEST(a_folder_swapped_for_a_link_out_mid_render_keeps_the_image_inside) {
+    for (const bool named : {false, true}) {
+        const Scratch folder;
+        fs::create_directories(folder.work / "sub");
+        fs::create_directories(folder.root / "elsewhere");
+        write_bytes(folder.work / "slow.txt", slow_scene("sub/out.ppm"));
+        Options options;
+        options.named_temporary = named;
+        const pid_t pid = start(folder, {"slow.txt"}, options);
+        CHECK(opens_a_file_in(pid, folder.work / "sub", 1000));
+        kill(pid, SIGSTOP);
+        CHECK(!fs::exists(folder.work / "sub" / "out.ppm"));  // not yet in place
+        fs::rename(folder.work / "sub", folder.work / "checked");
+        fs::create_directory_symlink(folder.root / "elsewhere", folder.work / "sub");
+        kill(pid, SIGCONT);
+        CHECK_EQ(wait_for(pid), 0);
+        CHECK(fs::is_empty(folder.root / "elsewhere"));
+        CHECK_EQ(fs::file_size(folder.work / "checked" / "out.ppm"), slow_image_bytes());
+        CHECK_EQ(folder.names(), std::string("checked slow.txt sub"));
+    }
+}
+
 // Folders dd/dd/... `levels` deep below the folder `top` holds open, made one at a time
 // by handle: their path may be longer than PATH_MAX, which calls by path refuse. Removed
 // with all they hold, deepest first, when it goes (fs::remove_all() cannot reach them).

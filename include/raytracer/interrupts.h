@@ -39,9 +39,12 @@ void release_interrupts();
 // The named temporary file a handler must remove. The path is copied into a fixed
 // buffer the handler can read; one longer than the buffer is refused (returns false)
 // and the caller must use another name.
-bool set_interrupt_cleanup(const char* path);
 #ifdef _WIN32
 bool set_interrupt_cleanup(const wchar_t* path);  // any Unicode path
+#else
+// The name in an open folder (a descriptor, which must stay open until the cleanup is
+// cleared): removed with unlinkat(), wherever the folder's path leads by then.
+bool set_interrupt_cleanup(int folder, const char* name);
 #endif
 // No file for a handler to remove (it has been removed, or renamed into place).
 void clear_interrupt_cleanup();

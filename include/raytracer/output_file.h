@@ -44,7 +44,12 @@ using NativePath = std::string;
 
 class PendingFile {
 public:
-    explicit PendingFile(const char* file_name, Destination destination = Destination::Replace);
+    // within_working_folder: the file's folder must lie in the working folder or below it
+    // (a scene's OUTPUT, folder_place.h). On POSIX systems the folder is held open from
+    // that check on, and the file is created, linked and renamed in it by descriptor, so
+    // a folder on the way replaced meanwhile (by a link out) cannot move the image.
+    explicit PendingFile(const char* file_name, Destination destination = Destination::Replace,
+                         bool within_working_folder = false);
     PendingFile(const PendingFile&) = delete;
     PendingFile& operator=(const PendingFile&) = delete;
     ~PendingFile();
@@ -68,6 +73,10 @@ private:
     void open_replacement();
     bool open_unnamed(const NativePath& folder);
     void open_named(const NativePath& folder);
+    void remove_temporary();
+#ifndef _WIN32
+    bool replace_target(std::string& error);
+#endif
     bool link_unnamed(std::string& error);
     void discard();
     void close_file();
@@ -80,12 +89,16 @@ private:
 
     std::string name_;  // as given, for messages
     Destination destination_;
-    NativePath target_, temporary_;  // temporary_: empty while unnamed
+    bool within_working_folder_;
+    // The target and the temporary; on POSIX systems their names in folder_ (temporary_
+    // empty while unnamed).
+    NativePath target_, temporary_;
 #ifdef _WIN32
     std::FILE* file_ = nullptr;
     bool deleted_on_close_ = false;  // the temporary goes when its handle closes
 #else
     int fd_ = -1;
+    int folder_ = -1;  // the target's folder, held open (open_folder())
 #endif
     bool open_ = false;                         // the file is ours to write
     bool unnamed_ = false;                      // created with O_TMPFILE: no name until commit()
