@@ -1,3 +1,5 @@
+// Where a folder lies against the working folder (folder_place.h): on POSIX systems by
+// walking up from the folder itself, on Windows by its final path.
 #include "raytracer/folder_place.h"
 
 #include <algorithm>
