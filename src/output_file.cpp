@@ -20,6 +20,7 @@
 #include <io.h>
 #else
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 #endif
 
@@ -48,6 +49,12 @@ std::string cannot_create(const std::string& name, const fs::path& folder, int e
     std::error_code ec;
     const std::string start = shown(name, kMaxShownPath) + " cannot be created: ";
     if (error == ENAMETOOLONG) return start + "the name or path is too long for the system";
+#ifndef _WIN32
+    // A folder removed while the program ran (its working folder, say) can still be
+    // stat'ed, with no link left; making a file in it fails with EPERM (O_TMPFILE) or ENOENT.
+    if (struct stat s{}; ::stat(folder.c_str(), &s) == 0 && s.st_nlink == 0)
+        return start + "its folder " + shown(folder.u8string(), kMaxShownPath) + " has been deleted";
+#endif
     // exists() fails, rather than says no, where the path cannot be followed: a folder
     // on the way without search permission, a loop of symbolic links.
     if (!fs::exists(folder, ec) && ec)

@@ -710,6 +710,30 @@ TEST(a_symbolic_link_out_of_the_working_folder_is_outside_it) {
     CHECK(fs::exists(folder.work / "inside" / "out.ppm"));
 }
 
+// A working folder deleted before the image's file is made (the scene still coming on
+// standard input) is said to be deleted, not unwritable: exit 3, in both modes.
+TEST(a_deleted_working_folder_is_named_as_such) {
+    for (const bool named : {false, true}) {
+        const Scratch folder;
+        int scene_pipe[2];
+        CHECK(pipe2(scene_pipe, O_CLOEXEC) == 0);  // the write end not inherited: an end of file
+        Options options;
+        options.named_temporary = named;
+        options.stdin_fd = scene_pipe[0];
+        const pid_t pid = start(folder, {"-"}, options);
+        close(scene_pipe[0]);
+        wait_until_catching(pid, SIGINT);  // running in folder.work
+        fs::remove(folder.work);
+        const std::string scene = small_scene("out.ppm");
+        CHECK_EQ(write(scene_pipe[1], scene.data(), scene.size()), static_cast<ssize_t>(scene.size()));
+        close(scene_pipe[1]);
+        CHECK_EQ(wait_for(pid), 3);
+        CHECK(captured_stderr(folder).find(
+                  "OUTPUT 'out.ppm' cannot be created: its folder '.' has been deleted") !=
+              std::string::npos);
+    }
+}
+
 // Whether process pid holds a file open in folder (a link of /proc/<pid>/fd there: the
 // unnamed file of Linux shows as "folder/#inode (deleted)") within `tries` looks 5 ms apart.
 bool opens_a_file_in(pid_t pid, const fs::path& folder, int tries) {
