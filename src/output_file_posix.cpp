@@ -24,14 +24,17 @@ namespace fs = std::filesystem;
 void PendingFile::open_replacement() {
     const fs::path target(target_);
     const NativePath folder = folder_of(target).native();
-    folder_ = open_folder(folder.c_str());
-    if (folder_ < 0) {
-        error_ = cannot_create(name_, folder, errno);
+    // A bare name's folder is the working folder itself, which AT_FDCWD names as surely.
+    folder_ = target.has_parent_path() ? open_folder(folder.c_str()) : AT_FDCWD;
+    if (folder_ == -1) {
+        const int error = errno;
+        error_ = cannot_create(name_, folder, error);
         return;
     }
     // The same check as choose_output()'s, now on the folder every later step uses.
     int place_error = 0;
-    if (within_working_folder_ && place_of(folder_, place_error) != FolderPlace::Inside) {
+    if (within_working_folder_ && folder_ != AT_FDCWD &&
+        place_of(folder_, place_error) != FolderPlace::Inside) {
         error_ = shown(name_, kMaxShownPath) + " cannot be created: its folder is not in the working folder";
         return;
     }

@@ -1,6 +1,5 @@
 #include "raytracer/output_policy.h"
 
-#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>

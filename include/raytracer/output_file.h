@@ -98,7 +98,7 @@ private:
     bool deleted_on_close_ = false;  // the temporary goes when its handle closes
 #else
     int fd_ = -1;
-    int folder_ = -1;  // the target's folder, held open (open_folder())
+    int folder_ = -1;  // the target's folder, held open (open_folder()), or AT_FDCWD
 #endif
     bool open_ = false;                         // the file is ours to write
     bool unnamed_ = false;                      // created with O_TMPFILE: no name until commit()
