@@ -6,11 +6,10 @@
 #include <filesystem>
 #include <system_error>
 
-#ifdef _WIN32
-#include "raytracer/windows_api.h"
-#else
+#include "file_identity.h"
+
+#ifndef _WIN32
 #include <fcntl.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -27,9 +26,7 @@ namespace fs = std::filesystem;
 // gives it once opened (some standard libraries' fs::canonical leaves links as they are
 // here). False where the folder cannot be opened.
 bool resolved_folder(const fs::path& folder, fs::path& resolved) {
-    const HANDLE handle = CreateFileW(folder.c_str(), FILE_READ_ATTRIBUTES,
-                                      FILE_SHARE_READ | FILE_SHARE_WRITE | FILE_SHARE_DELETE, nullptr,
-                                      OPEN_EXISTING, FILE_FLAG_BACKUP_SEMANTICS, nullptr);
+    const HANDLE handle = open_attributes(folder.c_str());
     if (handle == INVALID_HANDLE_VALUE) return false;
     std::wstring path(32768, L'\0');  // the longest path Windows has
     const DWORD size = GetFinalPathNameByHandleW(handle, path.data(), static_cast<DWORD>(path.size()),
@@ -73,10 +70,6 @@ constexpr int kFolderOnly = O_PATH | O_DIRECTORY | O_CLOEXEC;
 constexpr int kFolderOnly = O_RDONLY | O_DIRECTORY | O_CLOEXEC;
 #endif
 
-bool same_file(const struct stat& a, const struct stat& b) {
-    return a.st_dev == b.st_dev && a.st_ino == b.st_ino;
-}
-
 }  // namespace
 
 int open_folder(const char* path) { return ::open(path, kFolderOnly); }
@@ -96,7 +89,7 @@ FolderPlace place_of(int folder, int& error) {
     if (fd < 0) error = errno;
     FolderPlace place = FolderPlace::Unknown;
     while (fd >= 0) {
-        if (same_file(here, working)) {
+        if (same_identity(here, working)) {
             place = FolderPlace::Inside;
             break;
         }
@@ -107,7 +100,7 @@ FolderPlace place_of(int folder, int& error) {
         ::close(fd);
         fd = up;
         if (!known) break;
-        if (same_file(above, here)) {  // the root is its own ".."
+        if (same_identity(above, here)) {  // the root is its own ".."
             place = FolderPlace::Outside;
             break;
         }

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 
+#include "file_identity.h"
 #include "raytracer/shown.h"
 
 #ifdef _WIN32
@@ -20,17 +21,11 @@ namespace fs = std::filesystem;
 
 // A file's identity whatever its names: volume and file index (hard links, case, 8.3 names).
 bool identity(const std::string& name, BY_HANDLE_FILE_INFORMATION& info) {
-    const HANDLE h = CreateFileW(fs::u8path(name).c_str(), FILE_READ_ATTRIBUTES,
-                                 FILE_SHARE_READ | FILE_SHARE_WRITE | FILE_SHARE_DELETE, nullptr,
-                                 OPEN_EXISTING, FILE_FLAG_BACKUP_SEMANTICS, nullptr);
+    const HANDLE h = open_attributes(fs::u8path(name).c_str());
     if (h == INVALID_HANDLE_VALUE) return false;
     const bool ok = GetFileInformationByHandle(h, &info) != 0;
     CloseHandle(h);
     return ok;
-}
-bool same_identity(const BY_HANDLE_FILE_INFORMATION& x, const BY_HANDLE_FILE_INFORMATION& y) {
-    return x.dwVolumeSerialNumber == y.dwVolumeSerialNumber && x.nFileIndexHigh == y.nFileIndexHigh &&
-           x.nFileIndexLow == y.nFileIndexLow;
 }
 
 // Whether standard input (stream 0), output (1) or error (2) is a file on disk, and which.
@@ -67,11 +62,6 @@ bool standard_stream_is_folder(int /*stream*/) { return false; }
 std::string closed_stream_named(const std::string& /*path*/) { return {}; }
 #else
 namespace {
-// A file's identity whatever its names: device and inode (hard links, symbolic links, ./).
-bool same_identity(const struct stat& x, const struct stat& y) {
-    return x.st_dev == y.st_dev && x.st_ino == y.st_ino;
-}
-
 // Whether two standard streams are one file whose type `kind` takes.
 template <typename Kind>
 bool standard_streams_are_one(int a, int b, Kind kind) {
