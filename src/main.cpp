@@ -104,19 +104,19 @@ void keep_standard_streams_apart() {
 
 // The scene rendered into its output (chosen, checked, then replaced only when complete):
 // the exit status.
-int write_image(const rt::CommandLine& line, const rt::Scene& scene) {
+int write_image(const rt::CommandLine& command, const rt::Scene& scene) {
     const rt::OutputChoice output =
-        rt::choose_output(scene.output, line.output_given ? &line.output : nullptr, line.scene_file);
-    if (!output.refusal.empty()) return cannot_write(line.scene_file, scene, output, output.refusal);
+        rt::choose_output(scene.output, command.output_given ? &command.output : nullptr, command.scene_file);
+    if (!output.refusal.empty()) return cannot_write(command.scene_file, scene, output, output.refusal);
     if (output.destination == rt::Destination::StandardOutput && rt::is_terminal(stdout)) {
-        return cannot_write(line.scene_file, scene, output,
+        return cannot_write(command.scene_file, scene, output,
                             rt::shown(output.path, rt::kMaxShownPath) +
                                 " is a terminal, expected a pipe or a file for a binary image");
     }
     // -o - > f.ppm 2>&1 --progress (or 2>&1 | ...): the progress line would go into the image.
     if (output.destination == rt::Destination::StandardOutput &&
-        line.progress == rt::CommandLine::Progress::Always && rt::standard_streams_are_one_stream(1, 2)) {
-        return cannot_write(line.scene_file, scene, output,
+        command.progress == rt::CommandLine::Progress::Always && rt::standard_streams_are_one_stream(1, 2)) {
+        return cannot_write(command.scene_file, scene, output,
                             rt::shown(output.path, rt::kMaxShownPath) +
                                 " is also standard error, where --progress draws its line, expected "
                                 "another file for the image");
@@ -130,28 +130,29 @@ int write_image(const rt::CommandLine& line, const rt::Scene& scene) {
         // The rows are written while later rows render (render.h).
         rt::P6Writer writer(file, scene.columns, scene.rows);
         const bool progress =
-            line.progress == rt::CommandLine::Progress::Always ||
-            (line.progress == rt::CommandLine::Progress::WhenTerminal && rt::is_terminal(stderr));
+            command.progress == rt::CommandLine::Progress::Always ||
+            (command.progress == rt::CommandLine::Progress::WhenTerminal && rt::is_terminal(stderr));
         rt::ProgressSink sink(writer, scene.rows, progress);
-        if (line.reference)
-            rt::render_reference_to<double>(scene, sink, line.threads);
+        if (command.reference)
+            rt::render_reference_to<double>(scene, sink, command.threads);
         else
-            rt::render_to<double>(scene, sink, line.threads);
+            rt::render_to<double>(scene, sink, command.threads);
         rt::HelperPool::retire();  // the last job of this process
         sink.clear_line();
         error = writer.commit();
     }
     if (!error.empty())
-        return cannot_write(line.scene_file, scene, output, error + ", expected a writable file path");
+        return cannot_write(command.scene_file, scene, output, error + ", expected a writable file path");
     return kSuccess;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-    const rt::CommandLine line = rt::parse_command_line(argc, argv);
-    if (line.action == rt::CommandLine::Action::Help || line.action == rt::CommandLine::Action::Version) {
-        const std::string text = line.action == rt::CommandLine::Action::Help
+    const rt::CommandLine command = rt::parse_command_line(argc, argv);
+    if (command.action == rt::CommandLine::Action::Help ||
+        command.action == rt::CommandLine::Action::Version) {
+        const std::string text = command.action == rt::CommandLine::Action::Help
                                      ? std::string(usage_text())
                                      : std::string("raytracer.exe ") + rt::kVersion + "\n";
         std::fputs(text.c_str(), stdout);
@@ -163,14 +164,14 @@ int main(int argc, char** argv) {
         }
         return kSuccess;
     }
-    if (line.action == rt::CommandLine::Action::Wrong) {
+    if (command.action == rt::CommandLine::Action::Wrong) {
         // One line on stderr (graders collect them): a pointer to --help, not the text.
-        std::fprintf(stderr, "raytracer.exe: error: %s (see --help)\n", line.error.c_str());
+        std::fprintf(stderr, "raytracer.exe: error: %s (see --help)\n", command.error.c_str());
         return kBadUsage;
     }
     keep_standard_streams_apart();
     rt::install_interrupt_handlers();  // reading a large scene takes a while too
-    const std::string shown_file = rt::shown(rt::scene_name(line.scene_file), rt::kMaxShownPath);
+    const std::string shown_file = rt::shown(rt::scene_name(command.scene_file), rt::kMaxShownPath);
     // The scene's size, kept for a message about running out of memory while rendering it.
     struct Size {
         bool known = false;
@@ -178,10 +179,10 @@ int main(int argc, char** argv) {
         std::size_t ellipsoids = 0, lights = 0;
     } size;
     try {
-        rt::Scene scene = rt::load_scene(line.scene_file, line.threads);
+        rt::Scene scene = rt::load_scene(command.scene_file, command.threads);
         rt::bring_lengths_near_one(scene);  // a scene drawn at 1e160 renders as at 1
         size = {true, scene.columns, scene.rows, scene.spheres.size(), scene.lights.size()};
-        return write_image(line, scene);
+        return write_image(command, scene);
     } catch (const rt::SceneError& e) {
         std::fprintf(stderr, "%s\n", e.what());
         return kBadScene;
@@ -199,7 +200,7 @@ int main(int argc, char** argv) {
                 rt::plural(static_cast<long long>(size.ellipsoids), "ellipsoid", "ellipsoids").c_str(),
                 rt::plural(static_cast<long long>(size.lights), "light", "lights").c_str(),
                 // Each thread holds a band of rows: more threads than cores cost memory, not time.
-                line.threads > rt::available_cores() ? " or fewer --threads" : "");
+                command.threads > rt::available_cores() ? " or fewer --threads" : "");
         }
         return kOutOfMemory;
     } catch (const std::exception& e) {

@@ -182,10 +182,10 @@ void PendingFile::write(const void* data, std::size_t size) {
 }
 
 // WHY: on ext4 (delayed allocation, auto_da_alloc) renaming a new file over an existing
-// one first allocates and flushes the new file's blocks, inside rename(): about 0.5 ms
-// for a 400x400 image on the build machine, a quarter of the whole run of the floor
-// program. Blocks allocated up front by fallocate() are not delayed, so the rename
-// does not wait for them (rename 0.85 -> 0.3 ms). Elsewhere nothing is done.
+// one first allocates and flushes the new file's blocks, inside rename(): for a 400x400
+// image about a quarter of a process that only writes it. Blocks allocated up front by
+// fallocate() are not delayed, so the rename does not wait for them. Elsewhere nothing
+// is done.
 void PendingFile::expect_size(std::uint64_t bytes) {
     expected_ = bytes;
 #if defined(__linux__)

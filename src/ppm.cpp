@@ -1,5 +1,6 @@
 // PPM output, after the course's ppm.cpp template, made safe: a failed or interrupted
-// write never leaves a partial image nor clobbers an existing one.
+// write never leaves a partial image nor clobbers an existing one. And PPM input, for the
+// tests and the grader (read_ppm()).
 #include "raytracer/ppm.h"
 
 #include <algorithm>
@@ -20,7 +21,7 @@
 namespace rt {
 
 P6Writer::P6Writer(PendingFile& file, int width, int height)
-    : file_(file), expected_(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3) {
+    : file_(file), expected_(bytes_of_pixels(width, height)) {
     if (!file_.error().empty()) {
         failed_.store(true, std::memory_order_relaxed);
         return;
@@ -31,7 +32,7 @@ P6Writer::P6Writer(PendingFile& file, int width, int height)
     if (file_.write_failed()) failed_.store(true, std::memory_order_relaxed);
 }
 
-void P6Writer::rows(const std::uint8_t* bytes, std::size_t size) {
+void P6Writer::write_rows(const std::uint8_t* bytes, std::size_t size) {
     if (!file_.error().empty()) return;
     file_.write(bytes, size);
     written_ += size;
@@ -49,7 +50,7 @@ std::string P6Writer::commit() {
 
 std::string save_imageP6(PendingFile& file, int width, int height, const unsigned char* pixels) {
     P6Writer writer(file, width, height);  // commit() reports the file's error, if any
-    writer.rows(pixels, static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3);
+    writer.write_rows(pixels, bytes_of_pixels(width, height));
     return writer.commit();
 }
 
@@ -159,8 +160,7 @@ bool read_ppm(const std::string& file_name, Image& image, std::string& error, st
     if (!in || !read_header(in.get(), file_name, image.width, image.height, header, error)) return false;
     // Grown as the bytes come, doubling, so that a header claiming more pixels than the
     // file holds costs about the file's size in memory, not the header's.
-    const std::size_t size =
-        static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) * 3;
+    const std::size_t size = bytes_of_pixels(image.width, image.height);
     image.rgb.clear();
     for (std::size_t got = 0; got < size;) {
         const std::size_t chunk = std::min(size - got, std::max(got, std::size_t{1} << 20));

@@ -66,10 +66,10 @@ ProgressSink::ProgressSink(RowSink& inner, int total_rows, bool enabled)
 void ProgressSink::rows_finished(int count) {
     if (!enabled_) return;
     done_.store(count, std::memory_order_relaxed);
-    rendering();
+    still_rendering();
 }
 
-void ProgressSink::rendering() {
+void ProgressSink::still_rendering() {
     if (!enabled_ || std::this_thread::get_id() != drawer_) return;
     const auto now = std::chrono::steady_clock::now();
     if (now < next_draw_ || done_.load(std::memory_order_relaxed) >= total_) return;

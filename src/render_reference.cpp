@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "raytracer/image.h"
 #include "raytracer/reference/brute_force.h"
 #include "raytracer/reference/ellipsoid.h"
 #include "raytracer/reference/whitted.h"
@@ -21,8 +22,8 @@ void render_reference_to(const Scene& scene, RowSink& sink, unsigned threads) {
             for (int j = 0; j < rows; ++j) {
                 const Real y = tracer.row_y(first_row + j);
                 for (int c = 0; c < scene.columns; ++c) {
-                    tracer.pixel(tracer.column_x(c), y, out[j] + static_cast<std::size_t>(c) * 3, scratch);
-                    if (c % 4 == 3) sink.rendering();  // a row of a large scene takes seconds here
+                    tracer.pixel(tracer.column_x(c), y, out[j] + bytes_of_pixels(c), scratch);
+                    if (c % 4 == 3) sink.still_rendering();  // a row of a large scene takes seconds here
                 }
             }
         });

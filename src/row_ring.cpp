@@ -39,7 +39,7 @@ void RowRing::hand_over(int at_least) {
     if (end - from < std::max(1, at_least)) return;
     while (from < end) {  // in one piece, or two where the ring wraps
         const int to = std::min(end, (from / ring_rows_ + 1) * ring_rows_);
-        sink_.rows(row(from), static_cast<std::size_t>(to - from) * row_bytes_);
+        sink_.write_rows(row(from), static_cast<std::size_t>(to - from) * row_bytes_);
         from = to;
     }
     written_.store(end, std::memory_order_release);  // their slots are free

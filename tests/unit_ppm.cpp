@@ -302,8 +302,8 @@ TEST(p6_writer_writes_rows_as_they_come) {
     {
         rt::PendingFile file(dir.file("a.ppm").c_str());
         rt::P6Writer writer(file, 2, 2);
-        writer.rows(kPixels, 6);
-        writer.rows(kPixels + 6, 6);
+        writer.write_rows(kPixels, 6);
+        writer.write_rows(kPixels + 6, 6);
         CHECK_EQ(writer.commit(), std::string());
     }
     rt::Image image;
@@ -313,7 +313,7 @@ TEST(p6_writer_writes_rows_as_they_come) {
     {
         rt::PendingFile file(dir.file("b.ppm").c_str());
         rt::P6Writer writer(file, 2, 2);
-        writer.rows(kPixels, 6);
+        writer.write_rows(kPixels, 6);
         CHECK(!writer.commit().empty());
     }
     CHECK(!fs::exists(dir.file("b.ppm")));

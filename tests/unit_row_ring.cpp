@@ -37,7 +37,7 @@ struct Sink final : rt::RowSink {
     std::vector<std::size_t> sizes;
     std::atomic<int> inside{0};
     bool overlapped = false;
-    void rows(const std::uint8_t* data, std::size_t size) override {
+    void write_rows(const std::uint8_t* data, std::size_t size) override {
         if (inside.fetch_add(1) != 0) overlapped = true;
         bytes.insert(bytes.end(), data, data + size);
         sizes.push_back(size);

@@ -2,11 +2,10 @@
 // lines at a time, so that its text is never whole in memory (parse_scene_file(),
 // parser.h).
 //
-// WHY: the first touch of fresh memory is what reading costs here (a page fault each
-// 4 KiB, or 2 MiB on huge pages, at 10-13 us on this machine kind). Random 100k's
-// 26 MB read into one array took 19-40 ms on two threads; read a chunk at a time into
-// one buffer per thread, reused, 6 ms. Read and prepared, its peak fell from 58-61 to
-// 50-52 MB (the tree's build, not the text, is now the peak).
+// WHY: the first touch of fresh memory is what reading costs (a page fault each 4 KiB,
+// or 2 MiB on huge pages): a 26 MB scene read into one array took 19-40 ms on two
+// threads, a chunk at a time into one reused buffer per thread 6 ms; and the text never
+// adds to the peak of memory.
 #pragma once
 
 #include <cstddef>

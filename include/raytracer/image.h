@@ -1,6 +1,7 @@
 // An 8-bit RGB image, rows from the top, and a colour's bytes (to_byte(), pixel_bytes()).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <new>
@@ -16,9 +17,9 @@ namespace rt {
 // unwritten) rather than zeroed.
 //
 // WHY: the renderer writes every byte of its rows anyway, and a zero fill beforehand
-// costs the calling thread a page fault per 4 KiB of fresh memory: 2 us each in this
-// virtual machine. Unwritten, the pages of the renderer's row ring (row_ring.h) are
-// first touched by the threads that render the rows, each on its own core.
+// costs the calling thread a page fault per 4 KiB of fresh memory. Unwritten, the pages
+// of the renderer's row ring (row_ring.h) are first touched by the threads that render
+// the rows, each on its own core.
 template <typename T>
 struct UninitializedAllocator : std::allocator<T> {
     template <typename U>
@@ -37,9 +38,16 @@ struct UninitializedAllocator : std::allocator<T> {
 
 using Bytes = std::vector<std::uint8_t, UninitializedAllocator<std::uint8_t>>;
 
+// A pixel's bytes: r, g, b (SPEC section 6).
+constexpr std::size_t kBytesPerPixel = 3;
+// The bytes of a block of pixels, `columns` wide and `rows` high (a row's: rows = 1).
+constexpr std::size_t bytes_of_pixels(int columns, int rows = 1) {
+    return static_cast<std::size_t>(columns) * static_cast<std::size_t>(rows) * kBytesPerPixel;
+}
+
 struct Image {
     int width = 0, height = 0;
-    Bytes rgb;  // width * height * 3 bytes, top-left pixel first
+    Bytes rgb;  // bytes_of_pixels(width, height), top-left pixel first
 };
 
 // SPEC section 6: clamp to [0, 1], scale by 255, truncate. NaN gives 0.

@@ -22,7 +22,7 @@ class PendingFile;  // output_file.h
 class P6Writer final : public RowSink {
 public:
     P6Writer(PendingFile& file, int width, int height);
-    void rows(const std::uint8_t* bytes, std::size_t size) override;
+    void write_rows(const std::uint8_t* bytes, std::size_t size) override;
     bool failed() const override { return failed_.load(std::memory_order_relaxed); }
     std::string commit();
 

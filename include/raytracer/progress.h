@@ -7,7 +7,7 @@
 // main thread, which the interrupt handlers run on (interrupts.h; not on Windows), so
 // that a handler never runs beside a redraw. So the line moves when the main thread
 // hands rows over, about once a band of rows of its own, and on the reference path also
-// while it renders a row (rendering()). One clock reading per call, a redraw at most
+// while it renders a row (still_rendering()). One clock reading per call, a redraw at most
 // four times a second, no lock and no thread of its own.
 #pragma once
 
@@ -29,10 +29,10 @@ class ProgressSink final : public RowSink {
 public:
     // enabled = false passes rows through only.
     ProgressSink(RowSink& inner, int total_rows, bool enabled);
-    void rows(const std::uint8_t* bytes, std::size_t size) override { inner_.rows(bytes, size); }
+    void write_rows(const std::uint8_t* bytes, std::size_t size) override { inner_.write_rows(bytes, size); }
     bool failed() const override { return inner_.failed(); }
     void rows_finished(int count) override;
-    void rendering() override;
+    void still_rendering() override;
     // Erases the line, if one was drawn.
     void clear_line();
 

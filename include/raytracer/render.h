@@ -14,9 +14,9 @@
 namespace rt {
 
 // The fast path, raytracer.exe's: the flat sweep up to 200 ellipsoids, the tree past
-// them (src/render.cpp says exactly where; docs/speed.md). It hands the image's rows to sink as they are
-// finished (so that writing a file overlaps the render) and never holds the whole image: every row reaches
-// sink, in order, before render_to() returns.
+// them (exactly where: takes_the_tree() and PacketTracer::can_render(); docs/speed.md). It hands the image's
+// rows to sink as they are finished (so that writing a file overlaps the render) and never holds the whole
+// image: every row reaches sink, in order, before render_to() returns.
 template <typename Real>
 void render_to(const Scene& scene, RowSink& sink, unsigned threads = 0);
 // The same, the image returned whole.

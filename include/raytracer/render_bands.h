@@ -9,6 +9,7 @@
 #include <cstdint>
 
 #include "raytracer/helper_pool.h"
+#include "raytracer/image.h"
 #include "raytracer/row_ring.h"
 #include "raytracer/row_sink.h"
 #include "raytracer/scene.h"
@@ -26,8 +27,7 @@ constexpr int kBandRows = 4;
 template <typename MakeScratch, typename Draw>
 void render_bands(const Scene& scene, RowSink& sink, unsigned threads, MakeScratch make_scratch, Draw draw) {
     const unsigned count = std::min<unsigned>(threads_asked(threads), static_cast<unsigned>(scene.rows));
-    const std::size_t row_bytes = static_cast<std::size_t>(scene.columns) * 3;
-    RowRing ring(sink, scene.rows, row_bytes, kBandRows, count);
+    RowRing ring(sink, scene.rows, bytes_of_pixels(scene.columns), kBandRows, count);
     std::atomic<int> next_row{0};
     auto take_bands = [&]() {
         auto scratch = make_scratch();

@@ -3,9 +3,8 @@
 //
 // WHY a ring and not the whole image: raytracer.exe only writes the image, row block
 // by row block while later rows render, so the rows already written are never read
-// again. Each 4 KiB of fresh memory costs a page fault, about 2 us in this virtual
-// machine: a 400x400 image is 118 pages, the ring of two 64 KiB write blocks 32
-// (whole-process medians -0.14 to -0.19 ms on the course scenes).
+// again. Each 4 KiB of fresh memory costs a page fault (1-13 us on the virtual machines
+// of docs/speed.md): a 400x400 image is 118 pages, the ring of two 64 KiB write blocks 32.
 #pragma once
 
 #include <atomic>

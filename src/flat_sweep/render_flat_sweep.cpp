@@ -132,7 +132,7 @@ public:
         : scene_(scene),
           tracer_(std::move(tracer)),
           spans_(tracer_.row_spans(scene)),
-          background_row_(static_cast<std::size_t>(scene.columns) * 3),
+          background_row_(bytes_of_pixels(scene.columns)),
           ring_(sink, scene.rows, background_row_.size(), kTileRows, most_threads),
           column_x_(column_xs<Real>(scene)),
           eye_rays_(make_eye_rays(tracer_, tracer_.screen_rects(), column_x_)),
@@ -141,9 +141,10 @@ public:
         // renders the row, and only traced pixels are written over: most pixels of the
         // course scenes see no ellipsoid (against rows zero-filled, then written pixel by
         // pixel: 0.47 M instructions less a course scene).
-        std::uint8_t background[3];
+        std::uint8_t background[kBytesPerPixel];
         pixel_bytes(tracer_.background(), background);
-        for (std::size_t i = 0; i < background_row_.size(); ++i) background_row_[i] = background[i % 3];
+        for (std::size_t i = 0; i < background_row_.size(); ++i)
+            background_row_[i] = background[i % kBytesPerPixel];
     }
 
     // Whether some eye ray may see an ellipsoid (PacketTracer::sees_any()).
@@ -230,12 +231,12 @@ private:
                     if (i == kNoEllipsoid) continue;  // the background
                     // An ambient-only surface's bytes are known: no packet.
                     if (const std::uint8_t* bytes = tracer_.ambient_only_bytes(i)) {
-                        std::copy(bytes, bytes + 3, row_out + column * 3);
+                        std::copy(bytes, bytes + kBytesPerPixel, row_out + bytes_of_pixels(c));
                         continue;
                     }
                     Packet<Real>& packet = work.packets[i];
                     packet.add(column_x_[column], band.y[b], near_z_, hits.t[column],
-                               hits.inside[column] != 0, row_out + column * 3);
+                               hits.inside[column] != 0, row_out + bytes_of_pixels(c));
                     if (packet.count == kPacket) packet.shade(tracer_, i, work.scratch);
                 }
             }

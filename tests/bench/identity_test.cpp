@@ -34,7 +34,7 @@ using stress::random_scene;
 struct RecordingSink final : rt::RowSink {
     std::vector<std::size_t> sizes;
     rt::Bytes bytes;
-    void rows(const std::uint8_t* data, std::size_t size) override {
+    void write_rows(const std::uint8_t* data, std::size_t size) override {
         sizes.push_back(size);
         bytes.insert(bytes.end(), data, data + size);
     }
@@ -151,10 +151,10 @@ TEST(the_sink_gets_every_row_in_order) {
 struct SlowSink final : rt::RowSink {
     RecordingSink recorded;
     bool first = true;
-    void rows(const std::uint8_t* data, std::size_t size) override {
+    void write_rows(const std::uint8_t* data, std::size_t size) override {
         if (first) std::this_thread::sleep_for(std::chrono::milliseconds(30));
         first = false;
-        recorded.rows(data, size);
+        recorded.write_rows(data, size);
     }
 };
 

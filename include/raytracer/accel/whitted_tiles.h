@@ -43,16 +43,10 @@ public:
         std::vector<V> lights(tracer.light_count());
         for (std::size_t li = 0; li < lights.size(); ++li) lights[li] = tracer.light_position(li);
         shells_ = LightShells<Real>(tracer.geometry(), lights);
-        std::uint8_t background[3];
+        std::uint8_t background[kBytesPerPixel];
         pixel_bytes(tracer.background(), background);
-        for (int c = 0; c < kSpanColumns; ++c) std::memcpy(background_row_ + 3 * c, background, 3);
-        // An eye ray that sees an ellipsoid no light nor mirror adds to (ambient_only())
-        // gets its ambient term's bytes, known before any pixel (Whitted::shade()).
-        ambient_only_.resize(tracer.ellipsoid_count());
-        for (std::uint32_t i = 0; i < ambient_only_.size(); ++i) {
-            ambient_only_[i].is = ambient_only(tracer.geometry().ellipsoid(i));
-            pixel_bytes(tracer.material(i).ambient, ambient_only_[i].bytes);
-        }
+        for (int c = 0; c < kSpanColumns; ++c)
+            std::memcpy(background_row_ + bytes_of_pixels(c), background, kBytesPerPixel);
     }
 
     // One bounce's lanes: the rays, what they hit, and their colours. The eye rays'
@@ -64,7 +58,7 @@ public:
     static constexpr int kChunk = kRegisterLanes<Real, N>, kChunks = N / kChunk;
     using Q = Lanes<Real, kChunk>;  // a number per lane of a chunk (lanes.h)
     struct Chunk {
-        Vec3<Q> origin, direction, centre, scale, scale_squared, ambient;  // each hit's terms
+        Vec3<Q> origin, direction, centre, scale, scale_squared, ambient_term;  // each hit's terms
         Q t, kr;
         Finish<Q> finish;
         SurfacePoint<Q> surface;
@@ -113,13 +107,17 @@ public:
                               scratch);
                 continue;
             }
-            for (int b = 0; b < rows; ++b)
-                std::memcpy(out[b] + std::ptrdiff_t{3} * span, background_row_,
-                            std::size_t{3} * static_cast<std::size_t>(span_end - span));
+            fill_background(out, rows, span, span_end);
         }
     }
 
 private:
+    // BACK's bytes into columns [first, last) of the band's rows.
+    void fill_background(std::uint8_t* const* out, int rows, int first, int last) const {
+        for (int b = 0; b < rows; ++b)
+            std::memcpy(out[b] + bytes_of_pixels(first), background_row_, bytes_of_pixels(last - first));
+    }
+
     // The pixels of columns [first, last) of a band (band()): their eye rays' hits from
     // the tree, then tiles of those that hit something shaded; BACK where they miss.
     void eye_block(const Real* column_x, int first, int last, const Real* y, std::uint8_t* const* out,
@@ -129,9 +127,7 @@ private:
         Bounce& eye = scratch.bounces[0];
         for (int c0 = first; c0 < last; c0 += kColumns) {
             const int c_end = std::min(c0 + kColumns, last);
-            for (int b = 0; b < rows; ++b)  // BACK where a ray misses; a hit's bytes overwrite it
-                std::memcpy(out[b] + std::ptrdiff_t{3} * c0, background_row_,
-                            std::size_t{3} * static_cast<std::size_t>(c_end - c0));
+            fill_background(out, rows, c0, c_end);  // where a ray misses; a hit's bytes overwrite it
             if (!rays.tried()) continue;
             std::uint8_t* tile_out[N];  // only the lanes in hits are read
             unsigned hits = 0;
@@ -140,9 +136,11 @@ private:
                     const int k = b * kColumns + (c - c0);
                     eye.hit[k] = rays.hit(b, c - first);
                     if (!eye.hit[k].found()) continue;
-                    std::uint8_t* const bytes = out[b] + std::ptrdiff_t{3} * c;
-                    if (const AmbientOnly& a = ambient_only_[eye.hit[k].ellipsoid]; a.is) {
-                        std::memcpy(bytes, a.bytes, 3);
+                    std::uint8_t* const bytes = out[b] + bytes_of_pixels(c);
+                    // An ellipsoid no light nor mirror adds to: its bytes are known.
+                    if (const SurfaceConstants<Real>& s = tracer_.surface(eye.hit[k].ellipsoid);
+                        s.ambient_only) {
+                        std::memcpy(bytes, s.ambient_bytes, kBytesPerPixel);
                         continue;
                     }
                     eye.direction[k] = {column_x[c], y[b], tracer_.near_z()};
@@ -164,19 +162,20 @@ private:
         shade(depth, lanes, scratch);
     }
 
-    // Whitted::shade() for each lane in lanes of bounce `depth` (0: the eye rays, which
-    // see BACK where they miss) given b.hit: its rays' colours. Its arithmetic for all
-    // lanes (shading.h over Lanes, a chunk at a time), its branches as lane sets.
+    // Whitted::shade() for each lane in lanes of bounce `depth` (0: the eye rays) given
+    // b.hit: its rays' colours, black where a mirrored ray misses (eye rays come here only
+    // where they hit). Its arithmetic for all lanes (shading.h over Lanes, a chunk at a
+    // time), its branches as lane sets.
     void shade(int depth, unsigned lanes, Scratch& scratch) const {
         Bounce& b = scratch.bounces[static_cast<std::size_t>(depth)];
         const HitLanes h = gather(b, lanes, depth < kMaxReflections);
-        const Vec3<Q> miss = Vec3<Q>::from(depth == 0 ? tracer_.background() : V{});
+        const Vec3<Q> miss = Vec3<Q>::from(V{});
         static_assert(LightShells<Real>::kMax + 1 <= ClearedLanes::kMax, "room for the shells and the own");
         unsigned in_shell[LightShells<Real>::kMax] = {};  // the lanes whose points each shell holds
         for (int i = 0; i < kChunks; ++i) {
             Chunk& c = b.chunk[i];
             const LaneBits hit = part(h.hits, i);
-            c.colour = select(hit, c.ambient, miss);
+            c.colour = select(hit, c.ambient_term, miss);
             if (hit == 0) continue;
             c.surface =
                 surface_point(c.origin, c.direction, c.t, part(h.inside, i), c.centre, c.scale_squared);
@@ -222,17 +221,17 @@ private:
             const NearestHit<Real>& hit = b.hit[k];
             if (!hit.found()) continue;
             const Ellipsoid<Real>& e = tracer_.geometry().ellipsoid(hit.ellipsoid);
-            const typename Tracer::Material& material = tracer_.material(hit.ellipsoid);
+            const SurfaceConstants<Real>& surface = tracer_.surface(hit.ellipsoid);
             Chunk& c = b.chunk[k / kChunk];
             set_lane(c.origin, j, b.origin[k]), set_lane(c.direction, j, b.direction[k]);
             set_lane(c.centre, j, e.centre), set_lane(c.scale, j, e.scale),
                 set_lane(c.scale_squared, j, e.scale_squared);
-            set_lane(c.ambient, j, material.ambient);
+            set_lane(c.ambient_term, j, surface.ambient_term);
             c.t[j] = hit.t, c.kr[j] = e.kr;
             set_lane(c.finish, j, finish_of(e));
             h.inside |= hit.inside ? LaneBits(1) << k : 0;
             h.hits |= 1U << k;
-            h.lit |= material.no_lighting ? 0U : 1U << k;
+            h.lit |= surface.no_lighting ? 0U : 1U << k;
             h.reflecting |= may_reflect && e.kr > 0 ? 1U << k : 0U;
         }
         for (Chunk& c : b.chunk) share_exponent(c.finish);
@@ -324,14 +323,9 @@ private:
     }
 
     const Tracer& tracer_;
-    LightShells<Real> shells_;  // the ellipsoids that hold a light
-    BlockerHints hints_;        // where each shadow query starts
-    struct AmbientOnly {
-        bool is = false;        // ambient_only()
-        std::uint8_t bytes[3];  // and then its pixels' bytes
-    };
-    std::vector<AmbientOnly> ambient_only_;          // per ellipsoid
-    std::uint8_t background_row_[3 * kSpanColumns];  // a span's row of BACK's bytes
+    LightShells<Real> shells_;                                    // the ellipsoids that hold a light
+    BlockerHints hints_;                                          // where each shadow query starts
+    std::uint8_t background_row_[kBytesPerPixel * kSpanColumns];  // a span's row of BACK's bytes
 };
 
 }  // namespace rt

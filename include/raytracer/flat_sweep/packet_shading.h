@@ -126,16 +126,16 @@ void PacketTracer<Real>::hit_colours(std::uint32_t i, int count, const Real* ox,
                                      const Real* oz, const Real* dx, const Real* dy, const Real* dz,
                                      const Real* t, const bool* inside, int reflections_left,
                                      TraceScratch<Real>& scratch, V* colours) const {
-    const Surface& surface = surfaces_[i];
+    const SurfaceConstants<Real>& surface = surfaces_[i];
     const Ellipsoid<Real>& e = ellipsoids_[i];
     const bool reflects = e.kr > 0 && reflections_left > 0;
     if (surface.no_lighting && !reflects) {  // the colour is the ambient term
-        for (int k = 0; k < count; ++k) colours[k] = surface.ambient;
+        for (int k = 0; k < count; ++k) colours[k] = surface.ambient_term;
         return;
     }
     HitPacket<Real, N> p;
     p.load(count, ox, oy, oz, dx, dy, dz, t, inside);
-    p.surface(e, surface.ambient);
+    p.surface(e, surface.ambient_term);
     if (!surface.no_lighting) {
         const auto finish = every_lane<HitPacket<Real, N>::kChunk>(finish_of(e));
         PacketPlace place;  // set with p.facing_light(), for the first light that faces a lane

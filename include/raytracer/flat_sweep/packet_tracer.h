@@ -47,21 +47,13 @@ public:
     // The reference that the tests hold this tracer's images to, byte for byte, is
     // whitted.h with brute_force.h (render_reference()).
     explicit PacketTracer(const Scene& scene)
-        : ellipsoids_(make_ellipsoids<Real>(scene)), background_(V::from(scene.background)) {
-        const V ambient = V::from(scene.ambient);
-        lights_.reserve(scene.lights.size());
+        : ellipsoids_(make_ellipsoids<Real>(scene)),
+          lights_(point_lights<Real>(scene)),
+          background_(V::from(scene.background)) {
+        const V ambient_light = V::from(scene.ambient);
         std::vector<V> light_positions;
-        for (const LightSpec& l : scene.lights) {
-            lights_.push_back({V::from(l.position), V::from(l.intensity)});
-            light_positions.push_back(V::from(l.position));
-        }
-        // Per ellipsoid, the ambient term and whether no light adds anything (see
-        // hit_colours()).
-        for (const Ellipsoid<Real>& e : ellipsoids_) {
-            Surface surface{ambient_term(ambient, e), no_lighting(e), ambient_only(e), {}};
-            pixel_bytes(surface.ambient, surface.bytes);
-            surfaces_.push_back(surface);
-        }
+        for (const PointLight<Real>& l : lights_) light_positions.push_back(l.position);
+        for (const Ellipsoid<Real>& e : ellipsoids_) surfaces_.push_back(surface_constants(ambient_light, e));
         bounds_ = SphereBounds<Real>(ellipsoids_);
         for (const Ellipsoid<Real>& e : ellipsoids_) eye_origin_.push_back(mapped_origin(e, V{}));
         enclosures_ = Enclosures<Real>(ellipsoids_, light_positions);
@@ -143,7 +135,7 @@ public:
     // The bytes of every pixel that sees ellipsoid i where its colour is its ambient term
     // alone (ambient_only()), else nullptr.
     const std::uint8_t* ambient_only_bytes(std::uint32_t i) const {
-        return surfaces_[i].ambient_only ? surfaces_[i].bytes : nullptr;
+        return surfaces_[i].ambient_only ? surfaces_[i].ambient_bytes : nullptr;
     }
     // The same as colours (before conversion to bytes).
     void eye_hit_colours(std::uint32_t i, int count, const Real* dx, const Real* dy, const Real* dz,
@@ -223,13 +215,7 @@ private:
 
     std::vector<Ellipsoid<Real>> ellipsoids_;
     std::vector<PointLight<Real>> lights_;
-    struct Surface {
-        V ambient;              // Ka * Ia * O
-        bool no_lighting;       // no_lighting(): no light adds anything
-        bool ambient_only;      // ambient_only(): the colour is the ambient term
-        std::uint8_t bytes[3];  // to_byte() of the ambient term
-    };
-    std::vector<Surface> surfaces_;  // per ellipsoid
+    std::vector<SurfaceConstants<Real>> surfaces_;  // per ellipsoid
     SphereBounds<Real> bounds_;
     std::vector<MappedOrigin<Real>> eye_origin_;  // per ellipsoid, of the camera
     std::vector<PixelRect> screen_rects_;         // per ellipsoid

@@ -51,9 +51,10 @@ struct Roots {
     Real near = 0, far = 0;
 };
 
-// Solves |o' + t d'|^2 = 1 with o' = (o - C)/s and d' = d/s: unit_sphere_roots(), the
-// one root solver, whose comment gives the scaling, the discriminant, its error bound
-// (the tangency rule) and the roots.
+// Solves |o' + t d'|^2 = 1 with o' = (o - C)/s and d' = d/s by the one root solver
+// (unit_sphere_roots.h: unit_line(), then unit_roots() where the line meets the sphere),
+// whose comment gives the scaling, the discriminant, its error bound (the tangency rule)
+// and the roots.
 //
 // intersect() is mapped_origin() and intersect_mapped() in one: rays from one origin
 // share o' and c, which a caller may compute once with mapped_origin() (the flat

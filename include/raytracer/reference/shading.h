@@ -12,12 +12,15 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "raytracer/compiler.h"
+#include "raytracer/image.h"
 #include "raytracer/lanes.h"
 #include "raytracer/reference/ellipsoid.h"
 #include "raytracer/reference/power.h"
 #include "raytracer/reference/spec_rules.h"
+#include "raytracer/scene.h"
 #include "raytracer/vec3.h"
 
 namespace rt {
@@ -27,6 +30,14 @@ template <typename Real>
 struct PointLight {
     Vec3<Real> position, intensity;
 };
+template <typename Real>
+std::vector<PointLight<Real>> point_lights(const Scene& scene) {
+    std::vector<PointLight<Real>> lights;
+    lights.reserve(scene.lights.size());
+    for (const LightSpec& l : scene.lights)
+        lights.push_back({Vec3<Real>::from(l.position), Vec3<Real>::from(l.intensity)});
+    return lights;
+}
 
 // What shading needs of an ellipsoid's material, per ray for lanes.
 template <typename T>
@@ -78,8 +89,8 @@ Finish<Lanes<Real, N>> every_lane(const Finish<Real>& f) {
 
 // Ellipsoid e's ambient term Ka*Ia*O, as every hit on it computes it.
 template <typename Real>
-Vec3<Real> ambient_term(const Vec3<Real>& ambient, const Ellipsoid<Real>& e) {
-    return (ambient * e.ka) * e.colour;
+Vec3<Real> ambient_term(const Vec3<Real>& ambient_light, const Ellipsoid<Real>& e) {
+    return (ambient_light * e.ka) * e.colour;
 }
 
 // Whether no light can add to e's colour: Kd = 0 and no specular term.
@@ -93,6 +104,21 @@ bool no_lighting(const Ellipsoid<Real>& e) {
 template <typename Real>
 bool ambient_only(const Ellipsoid<Real>& e) {
     return no_lighting(e) && !(e.kr > 0);
+}
+
+// What shading knows of an ellipsoid before any ray, made once per scene.
+template <typename Real>
+struct SurfaceConstants {
+    Vec3<Real> ambient_term;        // ambient_term(): Ka * Ia * O
+    bool no_lighting;               // no_lighting(): no light adds anything
+    bool ambient_only;              // ambient_only(): the colour is the ambient term
+    std::uint8_t ambient_bytes[3];  // pixel_bytes() of the ambient term
+};
+template <typename Real>
+SurfaceConstants<Real> surface_constants(const Vec3<Real>& ambient_light, const Ellipsoid<Real>& e) {
+    SurfaceConstants<Real> s{ambient_term(ambient_light, e), no_lighting(e), ambient_only(e), {}};
+    pixel_bytes(s.ambient_term, s.ambient_bytes);
+    return s;
 }
 
 // A ray's hit: the point, the unit normal facing the viewer, and normalize(-direction).

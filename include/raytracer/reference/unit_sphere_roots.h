@@ -157,8 +157,8 @@ RT_ALWAYS_INLINE UnitLine<Real> unit_line(Real ox, Real oy, Real oz, Real dx, Re
     const Real px = ox + dx, py = oy + dy, pz = oz + dz;
     const Real gx = abs(ox) + ax, gy = abs(oy) + ay, gz = abs(oz) + az;
     // |p|^2 - 1 as (k - 1)(k + 1) + the other two squares, k the largest |p_i|: k - 1 is
-    // exact (Sterbenz) where |p| is near 1, so nothing is lost to the spacing of numbers
-    // near 1 (|p|^2 rounded first is a multiple of eps or eps/2 there, the allowance 34 eps).
+    // exact (Sterbenz) where |p| is near 1. |p|^2 rounded first is a multiple of eps or
+    // eps/2 there, which would snap values near the allowance onto it: decided by rounding.
     const Real kx = abs(px), ky = abs(py), kz = abs(pz), sx = px * px, sy = py * py, sz = pz * pz;
     const bool x_largest = kx >= ky && kx >= kz, y_largest = ky > kx && ky >= kz;
     const Real k = x_largest ? kx : (y_largest ? ky : kz);

@@ -24,15 +24,10 @@ class Whitted {
 public:
     using V = Vec3<Real>;
 
-    // What shading needs of an ellipsoid beyond it and its Finish (finish_of()).
-    struct Material {
-        V ambient;         // Ka * Ia * O
-        bool no_lighting;  // no_lighting(): no light adds anything
-    };
-
     // geometry: over make_ellipsoids<Real>(scene).
     Whitted(const Scene& scene, Geometry geometry)
         : geometry_(std::move(geometry)),
+          lights_(point_lights<Real>(scene)),
           background_(V::from(scene.background)),
           left_(Real(scene.left)),
           right_(Real(scene.right)),
@@ -41,15 +36,10 @@ public:
           near_z_(-Real(scene.near_plane)),
           columns_(scene.columns),
           rows_(scene.rows) {
-        lights_.reserve(scene.lights.size());
-        for (const LightSpec& l : scene.lights)
-            lights_.push_back({V::from(l.position), V::from(l.intensity)});
-        const V ambient = V::from(scene.ambient);
-        materials_.reserve(scene.spheres.size());
-        for (std::uint32_t i = 0; i < scene.spheres.size(); ++i) {
-            const Ellipsoid<Real>& e = geometry_.ellipsoid(i);
-            materials_.push_back({ambient_term(ambient, e), no_lighting(e)});
-        }
+        const V ambient_light = V::from(scene.ambient);
+        surfaces_.reserve(scene.spheres.size());
+        for (std::uint32_t i = 0; i < scene.spheres.size(); ++i)
+            surfaces_.push_back(surface_constants(ambient_light, geometry_.ellipsoid(i)));
     }
 
     // The x of column c and the y of row r on the near plane (spec_rules.h).
@@ -88,12 +78,12 @@ public:
     V shade(const NearestHit<Real>& hit, const V& origin, const V& direction, int reflections_left,
             Scratch& scratch) const {
         const Ellipsoid<Real>& e = geometry_.ellipsoid(hit.ellipsoid);
-        const Material& m = materials_[hit.ellipsoid];
+        const SurfaceConstants<Real>& surface = surfaces_[hit.ellipsoid];
         const SurfacePoint<Real> s =
             surface_point(origin, direction, hit.t, hit.inside, e.centre, e.scale_squared);
-        V colour = m.ambient;
+        V colour = surface.ambient_term;
         const Finish<Real> finish = finish_of(e);
-        for (std::size_t li = 0; li < lights_.size() && !m.no_lighting; ++li) {
+        for (std::size_t li = 0; li < lights_.size() && !surface.no_lighting; ++li) {
             const LightRay<Real> r = light_ray(s, lights_[li].position);
             if (r.faces && !geometry_.occluded(s.point, r.to_light, scratch.blockers[li]))
                 add_light(colour, s, r, lights_[li].intensity, finish, /*lit=*/true);
@@ -106,8 +96,8 @@ public:
     }
 
     // For the tree's tiles, which shade many hits at once (whitted_tiles.h).
-    const Material& material(std::uint32_t i) const { return materials_[i]; }
-    std::size_t ellipsoid_count() const { return materials_.size(); }
+    const SurfaceConstants<Real>& surface(std::uint32_t i) const { return surfaces_[i]; }
+    std::size_t ellipsoid_count() const { return surfaces_.size(); }
     std::size_t light_count() const { return lights_.size(); }
     const V& light_position(std::size_t li) const { return lights_[li].position; }
     const V& light_intensity(std::size_t li) const { return lights_[li].intensity; }
@@ -118,7 +108,7 @@ public:
 private:
     Geometry geometry_;  // holds the ellipsoids
     std::vector<PointLight<Real>> lights_;
-    LargeVector<Material> materials_;  // per ellipsoid
+    LargeVector<SurfaceConstants<Real>> surfaces_;  // per ellipsoid
     V background_;
     Real left_, right_, bottom_, top_, near_z_;
     int columns_, rows_;
