@@ -105,10 +105,10 @@ long long differing_roots(unsigned seed, long long& hits, long long& grazing) {
         rt::intersect_lanes<N>(e, ox, oy, oz, dx, dy, dz, hit, near, far);
         for (int k = 0; k < N; ++k) {
             const rt::Roots<Real> r = rt::intersect(e, rays[k].origin, rays[k].direction);
-            hits += r.hit;
-            grazing += r.hit && r.near == 0 && r.far == 0;
-            differing +=
-                (hit[k] != 0) != r.hit || (r.hit && (!same(near[k], r.near) || !same(far[k], r.far)));
+            hits += r.hit != 0 ? 1 : 0;
+            grazing += r.hit != 0 && r.near == 0 && r.far == 0;
+            differing += (hit[k] != 0) != (r.hit != 0) ||
+                         (r.hit != 0 && (!same(near[k], r.near) || !same(far[k], r.far)));
         }
     }
     return differing;

@@ -132,15 +132,15 @@ void roots_near_a_bound_are_at_it() {
     bool inside;
     // From inside the near plane's cut (near root behind it), the far root at 1 + 6 ulps
     // is on the near plane: not visible; at 1 + 12 ulps it is.
-    CHECK(!rt::visible_root(rt::Roots<Real>{true, Real(0.5), 1 + 6 * ulp}, beyond, t, inside));
-    CHECK(rt::visible_root(rt::Roots<Real>{true, Real(0.5), 1 + 12 * ulp}, beyond, t, inside));
+    CHECK(!rt::visible_root(rt::Roots<Real>{1, Real(0.5), 1 + 6 * ulp}, beyond, t, inside));
+    CHECK(rt::visible_root(rt::Roots<Real>{1, Real(0.5), 1 + 12 * ulp}, beyond, t, inside));
     CHECK(inside);
     // A shadow ray's roots at 0.001 and at the light, 6 ulps off: not between them.
     const Real start = Real(rt::kShadowRayMinT);
-    CHECK(!rt::blocks_segment(rt::Roots<Real>{true, start * (1 + 6 * ulp), 2}));
-    CHECK(rt::blocks_segment(rt::Roots<Real>{true, start * (1 + 12 * ulp), 2}));
-    CHECK(!rt::blocks_segment(rt::Roots<Real>{true, -1, 1 - 6 * ulp}));
-    CHECK(rt::blocks_segment(rt::Roots<Real>{true, -1, 1 - 12 * ulp}));
+    CHECK(!rt::blocks_segment(rt::Roots<Real>{1, start * (1 + 6 * ulp), 2}));
+    CHECK(rt::blocks_segment(rt::Roots<Real>{1, start * (1 + 12 * ulp), 2}));
+    CHECK(!rt::blocks_segment(rt::Roots<Real>{1, -1, 1 - 6 * ulp}));
+    CHECK(rt::blocks_segment(rt::Roots<Real>{1, -1, 1 - 12 * ulp}));
 }
 
 TEST(a_root_within_a_few_ulps_of_a_bound_is_at_it) {
@@ -157,14 +157,13 @@ void a_root_at_the_origin_is_zero() {
     const Real ulp = rt::scene_epsilon<Real>();
     const Real dx = Real(-0.8e-12), dy = Real(0.6e-12);  // into the sphere from (1, 0, 0)
     for (const Real c : {Real(0), 11 * ulp, -11 * ulp}) {
-        const rt::UnitRoots<Real> r = rt::unit_sphere_roots(Real(1), Real(0), Real(0), c, dx, dy, Real(0));
+        const rt::Roots<Real> r = rt::unit_sphere_roots(Real(1), Real(0), Real(0), c, dx, dy, Real(0));
         CHECK(r.hit != 0);
         CHECK(r.near == 0);
         CHECK_NEAR(double(r.far / Real(1.6e12)), 1.0, 1e-12);  // the far side: -2 o'.d' / d'.d'
     }
     // Farther from the surface than c's rounding: the origin's own offset, as computed.
-    const rt::UnitRoots<Real> off =
-        rt::unit_sphere_roots(Real(1), Real(0), Real(0), 100 * ulp, dx, dy, Real(0));
+    const rt::Roots<Real> off = rt::unit_sphere_roots(Real(1), Real(0), Real(0), 100 * ulp, dx, dy, Real(0));
     CHECK(off.near > 0);
 }
 

@@ -128,7 +128,7 @@ public:
                     const int k = lowest_bit(m);
                     Real t;
                     bool inside;
-                    if (visible_root(Roots<Real>{hit[k] != 0, near[k], far[k]}, beyond, t, inside) &&
+                    if (visible_root(Roots<Real>{hit[k], near[k], far[k]}, beyond, t, inside) &&
                         hits[k].replaced_by(t, index_[i]))
                         hits[k] = {t, index_[i], inside}, rays.t1[k] = C(t);
                 }
@@ -257,8 +257,7 @@ public:
                                rays.along[1], rays.along[2], hit, near, far);
             for (; met != 0; met &= met - 1) {
                 const int k = lowest_bit(met);
-                if (blocks_segment(Roots<Real>{hit[k] != 0, near[k], far[k]}))
-                    blocked |= 1U << k, blocker = i;
+                if (blocks_segment(Roots<Real>{hit[k], near[k], far[k]})) blocked |= 1U << k, blocker = i;
             }
         };
         if (tried < items_.size()) try_ellipsoid(tried, lanes);

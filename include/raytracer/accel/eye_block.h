@@ -55,7 +55,7 @@ RT_ALWAYS_INLINE void merge_eye_row(const MappedOrigin<Real>& o, ColumnDx column
         const int n = last - c0 < kBlock ? last - c0 : kBlock;
         RT_VECTOR_LOOP
         for (int k = 0; k < n; ++k) {
-            const UnitRoots<Real> r = unit_sphere_roots(ox, oy, oz, c_term, column_dx(c0 + k), dy, dz);
+            const Roots<Real> r = unit_sphere_roots(ox, oy, oz, c_term, column_dx(c0 + k), dy, dz);
             hit[k] = r.hit, near[k] = r.near, far[k] = r.far;
         }
         RT_VECTOR_LOOP

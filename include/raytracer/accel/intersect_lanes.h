@@ -29,7 +29,7 @@ void intersect_lanes(const Ellipsoid<Real>& e, const Real* ox, const Real* oy, c
     for (int k = 0; k < N; ++k) {
         const MappedOrigin<Real> o = mapped_origin(e, Vec3<Real>{ox[k], oy[k], oz[k]});
         // intersect_mapped(): d / s.
-        const UnitRoots<Real> r =
+        const Roots<Real> r =
             unit_sphere_roots(o.o.x, o.o.y, o.o.z, o.c, dx[k] / scale.x, dy[k] / scale.y, dz[k] / scale.z);
         hits[k] = r.hit, nears[k] = r.near, fars[k] = r.far;
     }

@@ -43,14 +43,6 @@ std::vector<Ellipsoid<Real>> make_ellipsoids(const Scene& scene) {
     return all;
 }
 
-// Both ray parameters where the ray meets the surface, near <= far; hit is false when
-// the ray misses it.
-template <typename Real>
-struct Roots {
-    bool hit = false;
-    Real near = 0, far = 0;
-};
-
 // Solves |o' + t d'|^2 = 1 with o' = (o - C)/s and d' = d/s by the one root solver
 // (unit_sphere_roots.h: unit_line(), then unit_roots() where the line meets the sphere),
 // whose comment gives the scaling, the discriminant, its error bound (the tangency rule)
@@ -76,9 +68,8 @@ Roots<Real> intersect_mapped(const Ellipsoid<Real>& e, const MappedOrigin<Real>&
                              const Vec3<Real>& direction) {
     const Vec3<Real> d = direction / e.scale;
     const UnitLine<Real> line = unit_line(m.o.x, m.o.y, m.o.z, d.x, d.y, d.z);
-    if (line.hit == 0) return {};  // the line misses the unit sphere
-    const UnitRoots<Real> r = unit_roots(line, m.c);
-    return {true, r.near, r.far};
+    if (line.hit == 0) return {};  // the line misses the unit sphere: hit, near and far 0
+    return unit_roots(line, m.c);
 }
 
 template <typename Real>

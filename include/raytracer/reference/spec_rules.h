@@ -62,7 +62,7 @@ Real visible_beyond(Real min_t) {
 // plane cuts the ellipsoid: it is seen hollow). Returns false when neither is visible.
 template <typename Real>
 bool visible_root(const Roots<Real>& r, Real beyond, Real& t, bool& inside) {
-    if (!r.hit) return false;
+    if (r.hit == 0) return false;
     inside = !(r.near > beyond);
     t = inside ? r.far : r.near;
     return t > beyond;
@@ -78,7 +78,7 @@ template <typename Real>
 bool blocks_segment(const Roots<Real>& r) {
     const Real min_t = visible_beyond(Real(kShadowRayMinT));
     const Real max_t = Real(1) - Real(kRootUlps) * scene_epsilon<Real>();
-    return r.hit && ((r.near > min_t && r.near < max_t) || (r.far > min_t && r.far < max_t));
+    return r.hit != 0 && ((r.near > min_t && r.near < max_t) || (r.far > min_t && r.far < max_t));
 }
 template <typename Real>
 bool blocks_segment(const Ellipsoid<Real>& e, const Vec3<Real>& point, const Vec3<Real>& to_light) {

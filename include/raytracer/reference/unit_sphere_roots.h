@@ -170,17 +170,17 @@ RT_ALWAYS_INLINE UnitLine<Real> unit_line(Real ox, Real oy, Real oz, Real dx, Re
     return {on != 0 ? Real(1) : Real(1) - miss, on, a, b, disc < 0 ? Real(0) : disc, inverse_largest};
 }
 
-// hit is 1 (the line meets the sphere, tangency included) or 0, a number rather than a
-// bool so that a loop over lanes stays in vector instructions; near <= far are the ray
-// parameters t of the original ray where hit is 1.
+// Both ray parameters t of the original ray where it meets the surface, near <= far,
+// where hit is 1 (the line meets the sphere, tangency included); else hit is 0. A number
+// rather than a bool, so that a loop over lanes stays in vector instructions.
 template <typename Real>
-struct UnitRoots {
+struct Roots {
     Real hit, near, far;
 };
 
 // The second half, given unit_line() and c = o'.o' - 1 of the origin (MappedOrigin).
 template <typename Real>
-RT_ALWAYS_INLINE UnitRoots<Real> unit_roots(const UnitLine<Real>& line, Real c) {
+RT_ALWAYS_INLINE Roots<Real> unit_roots(const UnitLine<Real>& line, Real c) {
     using std::abs;
     const Real signed_root = std::copysign(std::sqrt(line.disc), line.b);
     const Real q = -(line.b + signed_root);
@@ -202,8 +202,7 @@ RT_ALWAYS_INLINE UnitRoots<Real> unit_roots(const UnitLine<Real>& line, Real c) 
 
 // Both halves: one lane, o' = (ox, oy, oz), c = o'.o' - 1, d' = (dx, dy, dz).
 template <typename Real>
-RT_ALWAYS_INLINE UnitRoots<Real> unit_sphere_roots(Real ox, Real oy, Real oz, Real c, Real dx, Real dy,
-                                                   Real dz) {
+RT_ALWAYS_INLINE Roots<Real> unit_sphere_roots(Real ox, Real oy, Real oz, Real c, Real dx, Real dy, Real dz) {
     return unit_roots(unit_line(ox, oy, oz, dx, dy, dz), c);
 }
 
