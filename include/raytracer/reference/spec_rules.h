@@ -93,10 +93,9 @@ bool specular_is_zero(const Ellipsoid<Real>& e) {
     return e.ks == 0 && e.shininess >= 0 && e.shininess <= Real(1e6);
 }
 
-// No ellipsoid, in place of an ellipsoid's index: a closest-hit query's answer when the
-// ray hits nothing, and a geometry's hint for its any-hit query (which ellipsoid to try
-// first: one that blocked a shadow ray to this light before, whitted.h,
-// blocker_hints.h) before any. Above every index.
+// No ellipsoid, where an ellipsoid's index goes (greater than any index): what a
+// closest-hit query answers for a ray that hits nothing, and what an any-hit query's
+// hint holds before any shadow ray was blocked (whitted.h, blocker_hints.h).
 inline constexpr std::uint32_t kNoEllipsoid = 0xFFFFFFFFU;
 
 // The answer of a closest-hit query: the ellipsoid a ray sees first, at t.

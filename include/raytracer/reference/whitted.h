@@ -46,12 +46,13 @@ public:
     Real column_x(int c) const { return pixel_x(left_, right_, c, columns_); }
     Real row_y(int r) const { return pixel_y(top_, bottom_, r, rows_); }
 
-    // A thread's working memory: per light, the ellipsoid its last shadow ray was blocked
-    // by, which the geometry tries first for the next (its occluded()): neighbouring pixels
-    // are mostly blocked by the same one. It never changes an answer. Each geometry numbers
-    // it its own way (BruteForce by scene index, Bvh by position in leaf order).
+    // A thread's working memory, this path's one aid to speed: per light, the ellipsoid its
+    // last shadow ray was blocked by, which the geometry tries first for the next (its
+    // occluded()): neighbouring pixels are mostly blocked by the same one. It never changes
+    // an answer. Each geometry numbers it its own way (BruteForce by scene index, Bvh by
+    // position in leaf order).
     struct Scratch {
-        std::vector<std::uint32_t> blockers;
+        std::vector<std::uint32_t> blocker_hints;
     };
     Scratch make_scratch() const { return {std::vector<std::uint32_t>(lights_.size(), kNoEllipsoid)}; }
 
@@ -85,7 +86,7 @@ public:
         const Finish<Real> finish = finish_of(e);
         for (std::size_t li = 0; li < lights_.size() && !surface.no_lighting; ++li) {
             const LightRay<Real> r = light_ray(s, lights_[li].position);
-            if (r.faces && !geometry_.occluded(s.point, r.to_light, scratch.blockers[li]))
+            if (r.faces && !geometry_.occluded(s.point, r.to_light, scratch.blocker_hints[li]))
                 add_light(colour, s, r, lights_[li].intensity, finish, /*lit=*/true);
         }
         if (e.kr > 0 && reflections_left > 0)
