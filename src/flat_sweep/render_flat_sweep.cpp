@@ -3,17 +3,15 @@
 #include "raytracer/flat_sweep/render_flat_sweep.h"
 
 #include <algorithm>
-#include <atomic>
-#include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <utility>
 #include <vector>
 
 #include "raytracer/flat_sweep/eye_rays.h"
 #include "raytracer/flat_sweep/packet_tracer.h"
-#include "raytracer/helper_pool.h"
 #include "raytracer/own_cache_lines.h"
-#include "raytracer/row_ring.h"
+#include "raytracer/render_bands.h"
 
 namespace rt {
 
@@ -88,18 +86,6 @@ struct alignas(OwnCacheLines<char>::kLine) Workspace {
     }
 };
 
-// By default the other cores are called in only when the rest of the image would take
-// the calling thread longer than this alone (see sweep_rows()). Calling a helper costs this
-// thread about 0.08 ms; where it starts on an idle core at once (helper_pool.h) it
-// draws rows about 0.1 ms later, where it waits for the scheduler to move it, 3 ms.
-// The earlier the call, the more of the image the helper shares: 100 us rather than
-// 400 us took 0.1 to 0.2 ms off the course scenes at 400x400 (testIllum, testReflection,
-// testAmbient, testShadow: medians of 21 to 25 interleaved runs; 200 us in between) and
-// left testBehind, which traces nothing, as it was.
-std::chrono::microseconds worth_helping() {
-    return std::chrono::microseconds(HelperPool::starts_on_idle_core() ? 100 : 3000);
-}
-
 // The camera's terms per ellipsoid, for intersecting eye rays many columns at a time.
 template <typename Real>
 EyeRays<Real> make_eye_rays(const PacketTracer<Real>& tracer, const std::vector<PixelRect>& rects,
@@ -117,9 +103,7 @@ EyeRays<Real> make_eye_rays(const PacketTracer<Real>& tracer, const std::vector<
 }
 
 // One image through the flat sweep: what every band of rows shares, made once, and the
-// rows handed out a band of kTileRows at a time from a shared counter, so that a thread
-// that draws cheap rows (background) takes more of them, and at the end the calling
-// thread waits for at most one band of a helper's.
+// drawing of a band of kTileRows rows (render_bands.h hands them out).
 //
 // Every pixel is a pure function of the scene and its (column, row): no state carries
 // from one pixel to the next that could change a value (the last-occluder memory in the
@@ -128,12 +112,11 @@ EyeRays<Real> make_eye_rays(const PacketTracer<Real>& tracer, const std::vector<
 template <typename Real>
 class FlatSweep {
 public:
-    FlatSweep(const Scene& scene, PacketTracer<Real>&& tracer, RowSink& sink, unsigned most_threads)
+    FlatSweep(const Scene& scene, PacketTracer<Real>&& tracer)
         : scene_(scene),
           tracer_(std::move(tracer)),
           spans_(tracer_.row_spans(scene)),
           background_row_(bytes_of_pixels(scene.columns)),
-          ring_(sink, scene.rows, background_row_.size(), kTileRows, most_threads),
           column_x_(column_xs<Real>(scene)),
           eye_rays_(make_eye_rays(tracer_, tracer_.screen_rects(), column_x_)),
           near_z_(-static_cast<Real>(scene.near_plane)) {
@@ -154,31 +137,21 @@ public:
         return Workspace<Real>(tracer_, tracer_.screen_rects().size(), scene_.columns);
     }
 
-    // Renders bands until none is left; after_band(r) after each, r its last row.
-    template <typename AfterBand>
-    void take_rows(Workspace<Real>& work, AfterBand after_band) {
-        for (int r = next_row_.fetch_add(kTileRows); r < scene_.rows; r = next_row_.fetch_add(kTileRows)) {
-            const int end = std::min(r + kTileRows, scene_.rows);
-            ring_.reserve(end);
-            Band band;
-            band.first_row = r, band.end_row = end, band.band_lo = scene_.columns;
-            if (!ring_.sink_failed()) {
-                work.seen.clear();
-                for (int row = r; row < end; ++row) eye_hits(row, band, work);
-                shade(band, work);
-            }
-            for (int f = r; f < end; ++f) ring_.finish(f);
-            after_band(end - 1);
-        }
+    // Rows [first_row, first_row + rows), rows <= kTileRows, into out[0..rows).
+    void draw(int first_row, int rows, std::uint8_t* const* out, Workspace<Real>& work) const {
+        Band band;
+        band.first_row = first_row, band.end_row = first_row + rows, band.band_lo = scene_.columns;
+        band.out = out;
+        work.seen.clear();
+        for (int r = band.first_row; r < band.end_row; ++r) eye_hits(r, band, work);
+        shade(band, work);
     }
 
-    // Every row is finished: the rest to the sink.
-    void flush() { ring_.flush(); }
-
 private:
-    // A band of at most kTileRows rows: per row, the columns some ellipsoid may cover and
-    // its y; and those columns over the band.
+    // A band of at most kTileRows rows: per row, its bytes, the columns some ellipsoid may
+    // cover and its y; and those columns over the band.
     struct Band {
+        std::uint8_t* const* out = nullptr;  // out[b]: row first_row + b
         int first_row = 0, end_row = 0;
         int lo[kTileRows] = {}, hi[kTileRows] = {};
         Real y[kTileRows] = {};
@@ -188,9 +161,9 @@ private:
     // Row r as background, and the nearest hit of each of its eye rays that some
     // ellipsoid may meet (screen_bounds.h: a pixel that none may meet is the background,
     // without tracing), all columns of each ellipsoid's span at once (eye_rays.h).
-    void eye_hits(int r, Band& band, Workspace<Real>& work) {
+    void eye_hits(int r, Band& band, Workspace<Real>& work) const {
         OwnLinesVector<Span>& in_row = work.in_row;
-        std::copy(background_row_.begin(), background_row_.end(), ring_.row(r));
+        std::copy(background_row_.begin(), background_row_.end(), band.out[r - band.first_row]);
         in_row.clear();
         int lo = scene_.columns, hi = -1;  // the columns some ellipsoid may cover
         const double row_y_double = pixel_y(scene_.top, scene_.bottom, r, scene_.rows);
@@ -218,12 +191,12 @@ private:
 
     // The band's hit pixels, shaded in packets of pixels that see the same ellipsoid
     // (PacketTracer::eye_hit_pixels(), vector lanes), gathered tile by tile.
-    void shade(const Band& band, Workspace<Real>& work) {
+    void shade(const Band& band, Workspace<Real>& work) const {
         for (int c0 = band.band_lo; c0 <= band.band_hi; c0 += kTileColumns)
             for (int r = band.first_row; r < band.end_row; ++r) {
                 const int b = r - band.first_row;
                 const EyeRowHits<Real>& hits = work.hits[static_cast<std::size_t>(b)];
-                std::uint8_t* const row_out = ring_.row(r);
+                std::uint8_t* const row_out = band.out[b];
                 const int c_end = std::min(c0 + kTileColumns - 1, band.hi[b]);
                 for (int c = std::max(c0, band.lo[b]); c <= c_end; ++c) {
                     const auto column = static_cast<std::size_t>(c);
@@ -247,60 +220,11 @@ private:
     const PacketTracer<Real> tracer_;
     const RowSpans<typename PacketTracer<Real>::C> spans_;  // per ellipsoid, the columns of a row
     std::vector<std::uint8_t> background_row_;
-    // Rows go to the sink from a ring of rows as they are finished (row_ring.h), written
-    // by whichever thread completes a block of them while no block is being written.
-    // WHY: writing a 400x400 image took the calling thread 0.3-0.4 ms after the render
-    // (the kernel's copy into the page cache); a block written by one thread while the
-    // other renders costs the image half of that.
-    RowRing ring_;
     const std::vector<Real> column_x_;
     const EyeRays<Real> eye_rays_;
     Real near_z_;
-    std::atomic<int> next_row_{0};
 };
 
-// The image of a sweep that can_render(), on threads as render_to() takes them.
-template <typename Real>
-void sweep_rows(FlatSweep<Real>& sweep, const Scene& scene, unsigned threads, unsigned most_threads) {
-    // Each helper's working memory is made here, so that a helper thread allocates
-    // nothing (its first allocation would set up a malloc arena of its own).
-    OwnLinesVector<Workspace<Real>> helper_work;
-    auto help = [&](unsigned h) { sweep.take_rows(helper_work[h], [](int) {}); };
-    HelperPool::Job helpers;  // declared after all that help uses: closed first
-    auto call_helpers = [&](unsigned count) {
-        const unsigned wanted = std::min<unsigned>(count, static_cast<unsigned>(scene.rows)) - 1;
-        helper_work.reserve(wanted);  // no reallocation: the helpers hold references
-        for (unsigned h = 0; h < wanted; ++h) helper_work.push_back(sweep.workspace());
-        helpers.start(wanted, help);
-    };
-    // By default (threads = 0) the calling thread starts alone and calls in the other
-    // cores only when, at its pace so far, the rest of the image would take it longer
-    // than worth_helping(): scenes with few lit pixels are done sooner than a second
-    // thread pays (measured in docs/speed.md). An image in which no eye ray can meet an
-    // ellipsoid is drawn alone from the start: its rows are copies of the background, and
-    // rows go to the sink one write at a time, so a helper would only wait its turn
-    // (testBehind at 400x400, whole process, interleaved, medians of 300: 1.23 ms against
-    // 1.36 ms with the helper its pace called in).
-    if (threads > 1) call_helpers(threads);
-    bool helpers_decided = threads != 0 || !sweep.sees_any();  // asked for, judged, or of no use
-    Workspace<Real> work = sweep.workspace();
-    const auto start = std::chrono::steady_clock::now();
-    const auto worth = worth_helping();
-    sweep.take_rows(work, [&](int r) {
-        if (helpers_decided) return;
-        // Alone, this thread has done rows 0..r. Not judged on its first eighth of
-        // worth_helping() (cold caches): a scene done by then never asks.
-        const int done = r + 1, left = scene.rows - done;
-        const auto elapsed = std::chrono::steady_clock::now() - start;
-        if (left > 0 && elapsed * 8 >= worth && elapsed * left >= worth * done) {
-            helpers_decided = true;
-            if (most_threads > 1)
-                call_helpers(std::min<unsigned>(most_threads, static_cast<unsigned>(left + 1)));
-        }
-    });
-    helpers.finish();
-    sweep.flush();
-}
 }  // namespace
 
 template <typename Real>
@@ -308,9 +232,16 @@ bool render_flat_sweep_to(const Scene& scene, RowSink& sink, unsigned threads) {
     if constexpr (kFlatSweepPrecision<Real>) {
         PacketTracer<Real> tracer(scene);
         if (!tracer.can_render()) return false;  // its tables freed before the tree is built
-        const unsigned most_threads = threads_asked(threads);
-        FlatSweep<Real> sweep(scene, std::move(tracer), sink, most_threads);
-        sweep_rows(sweep, scene, threads, most_threads);
+        const FlatSweep<Real> sweep(scene, std::move(tracer));
+        // An image no eye ray can see an ellipsoid in is drawn alone: its rows are copies
+        // of the background (testBehind at 400x400, whole process, interleaved, medians of
+        // 300: 1.23 ms against 1.36 ms with the helper its pace called in).
+        render_bands<kTileRows>(
+            scene, sink, threads, [&] { return sweep.workspace(); },
+            [&](int first_row, int rows, std::uint8_t* const* out, Workspace<Real>& work) {
+                sweep.draw(first_row, rows, out, work);
+            },
+            sweep.sees_any() ? CallHelpers::WhenWorthIt : CallHelpers::Never);
         return true;
     }
     return false;
