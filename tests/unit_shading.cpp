@@ -8,6 +8,7 @@
 #include <random>
 
 #include "check.h"
+#include "raytracer/finish_lanes.h"
 #include "raytracer/image.h"
 #include "raytracer/lanes.h"
 #include "raytracer/reference/brute_force.h"

@@ -10,8 +10,9 @@
 // of 64 bytes (AVX-512) measured 15% slower on the tree's tiles than 32.
 //
 // A comparison gives a mask, bit k for lane k; where code for one ray branches, code
-// over lanes selects (select(), any()), so a lane never gets a term its scalar run
-// would have skipped, and never an addition of zero in its place.
+// over lanes selects (select(), any(): masks.h has their one-ray forms), so a lane never
+// gets a term its scalar run would have skipped, and never an addition of zero in its
+// place.
 #pragma once
 
 #include <algorithm>
@@ -21,14 +22,13 @@
 #include <type_traits>
 
 #include "raytracer/compiler.h"
+#include "raytracer/reference/masks.h"
 #include "raytracer/vec3.h"
 
 namespace rt {
 
 // The lanes' bits of an N-lane set, bit k for lane k, as a constant table: selects of
-// these rather than shifts by k let GCC vectorise the loops that build sets (64 bits
-// like a lane of doubles).
-using LaneBits = std::uint64_t;
+// these rather than shifts by k let GCC vectorise the loops that build sets.
 template <int N>
 struct LaneBitTable {
     LaneBits bit[N];
@@ -230,24 +230,7 @@ struct Lanes {
     }
 };
 
-// The same names for one ray: a mask is a bool (or the int of bool & bool).
-template <typename Real, typename = std::enable_if_t<std::is_arithmetic_v<Real>>>
-RT_ALWAYS_INLINE Real select(bool where, Real a, Real b) {
-    return where ? a : b;
-}
-template <typename Real, typename = std::enable_if_t<std::is_arithmetic_v<Real>>>
-Real pow_where(bool where, Real x, Real n) {
-    using std::pow;
-    return where ? pow(x, n) : Real(0);
-}
-inline bool any(bool where) { return where; }
-inline bool any(LaneBits where) { return where != 0; }
-
-// A vector's select, lane k of a Vec3 of lanes, and a vector the same in every lane.
-template <typename Mask, typename T>
-RT_ALWAYS_INLINE Vec3<T> select(Mask where, const Vec3<T>& a, const Vec3<T>& b) {
-    return {select(where, a.x, b.x), select(where, a.y, b.y), select(where, a.z, b.z)};
-}
+// Lane k of a Vec3 of lanes, and setting it.
 template <typename Real, int N>
 Vec3<Real> lane(const Vec3<Lanes<Real, N>>& v, int k) {
     return {v.x[k], v.y[k], v.z[k]};
@@ -272,19 +255,10 @@ LaneBits lanes_from(LaneBits set, int first) {
     return (set >> first) & ((LaneBits(1) << M) - 1);
 }
 
-// The mask a comparison of two T gives: bool for one ray, LaneBits for lanes; and the
-// integers that go with T (a whole exponent per ray).
-template <typename T>
-using MaskOf = decltype(T() > T());
-template <typename T>
-struct IntegerOfT {
-    using type = std::int32_t;
-};
+// The integers that go with lanes (masks.h): a whole exponent per lane.
 template <typename Real, int N>
 struct IntegerOfT<Lanes<Real, N>> {
     using type = Lanes<std::int32_t, N>;
 };
-template <typename T>
-using IntegerOf = typename IntegerOfT<T>::type;
 
 }  // namespace rt

@@ -20,6 +20,7 @@
 #include "raytracer/accel/light_shells.h"
 #include "raytracer/accel/slab_rays.h"
 #include "raytracer/bit_scan.h"
+#include "raytracer/finish_lanes.h"
 #include "raytracer/image.h"
 #include "raytracer/lanes.h"
 #include "raytracer/own_cache_lines.h"

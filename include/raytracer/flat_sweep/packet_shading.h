@@ -13,6 +13,7 @@
 #include "raytracer/accel/shadow_prefilter.h"
 #include "raytracer/bit_scan.h"
 #include "raytracer/compiler.h"
+#include "raytracer/finish_lanes.h"
 #include "raytracer/flat_sweep/hit_packet.h"
 #include "raytracer/flat_sweep/packet_tracer.h"
 #include "raytracer/lanes.h"

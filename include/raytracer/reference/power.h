@@ -20,7 +20,8 @@
 #include <cstdint>
 #include <type_traits>
 
-#include "raytracer/lanes.h"
+#include "raytracer/compiler.h"
+#include "raytracer/reference/masks.h"
 
 namespace rt {
 

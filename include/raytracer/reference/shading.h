@@ -1,14 +1,15 @@
 // The shading arithmetic of SPEC section 5, written once for one ray (T = Real: the
 // reference, whitted.h) and for lanes (T = Lanes<Real, N>, lanes.h: the tree's tiles,
-// whitted_tiles.h, and the flat sweep's packets, hit_packet.h): a hit's point, normal and direction to the
-// viewer, a light's ray, and the diffuse and specular terms of a light that reaches the point. The same
-// operations in the same order, so a lane's colour is the scalar's, bit for bit.
+// whitted_tiles.h, and the flat sweep's packets, hit_packet.h; finish_lanes.h sets a
+// Finish's lanes): a hit's point, normal and direction to the viewer, a light's ray, and
+// the diffuse and specular terms of a light that reaches the point. The same operations
+// in the same order, so a lane's colour is the scalar's, bit for bit.
 //
 // The terms are multiplied in the order the handout writes them: Ka*Ia*O, Kd*Ip*(N.L)*O
 // and Ks*Ip*(R.V)^n; a different order moves a few pixels across a truncation step. The
 // specular term is added only where it is not exactly zero (Ks = 0 or R.V <= 0: adding
 // it would change at most the sign of a zero channel); one ray branches on that, lanes
-// select (lanes.h, whose one-ray overloads of select() and any() this file uses too).
+// select (masks.h).
 #pragma once
 
 #include <cstdint>
@@ -16,8 +17,8 @@
 
 #include "raytracer/compiler.h"
 #include "raytracer/image.h"
-#include "raytracer/lanes.h"
 #include "raytracer/reference/ellipsoid.h"
+#include "raytracer/reference/masks.h"
 #include "raytracer/reference/power.h"
 #include "raytracer/reference/spec_rules.h"
 #include "raytracer/scene.h"
@@ -57,34 +58,6 @@ template <typename Real>
 Finish<Real> finish_of(const Ellipsoid<Real>& e) {
     const std::int32_t k = whole_exponent(e.shininess);
     return {e.colour, e.kd, e.ks, e.shininess, k, k, !specular_is_zero(e)};
-}
-
-// Lane k of a tile's Finish; its shared_exponent unknown (-1) until share_exponent()
-// finds it, once every lane is set.
-template <int N, typename Real>
-void set_lane(Finish<Lanes<Real, N>>& lanes, int k, const Finish<Real>& f) {
-    set_lane(lanes.colour, k, f.colour);
-    lanes.kd[k] = f.kd, lanes.ks[k] = f.ks, lanes.shininess[k] = f.shininess, lanes.exponent[k] = f.exponent;
-    lanes.shared_exponent = -1;
-    lanes.specular = (lanes.specular & ~kLaneBits<N>.bit[k]) | (f.specular ? kLaneBits<N>.bit[k] : 0);
-}
-
-template <int N, typename Real>
-void share_exponent(Finish<Lanes<Real, N>>& f) {
-    f.shared_exponent = f.exponent[0];
-    for (int k = 1; k < N; ++k) f.shared_exponent = f.exponent[k] == f.exponent[0] ? f.shared_exponent : -1;
-}
-
-// A Finish the same in every lane (a packet of hits on one ellipsoid).
-template <int N, typename Real>
-Finish<Lanes<Real, N>> every_lane(const Finish<Real>& f) {
-    return {Vec3<Lanes<Real, N>>::from(f.colour),
-            f.kd,
-            f.ks,
-            f.shininess,
-            f.exponent,
-            f.exponent,
-            f.specular ? LaneBits(~LaneBits(0) >> (64 - N)) : LaneBits(0)};
 }
 
 // Ellipsoid e's ambient term Ka*Ia*O, as every hit on it computes it.
