@@ -20,9 +20,8 @@ void render_reference_to(const Scene& scene, RowSink& sink, unsigned threads) {
         scene, sink, threads, [&] { return tracer.make_scratch(); },
         [&](int first_row, int rows, std::uint8_t* const* out, auto& scratch) {
             for (int j = 0; j < rows; ++j) {
-                const Real y = tracer.row_y(first_row + j);
                 for (int c = 0; c < scene.columns; ++c) {
-                    tracer.pixel(tracer.column_x(c), y, out[j] + bytes_of_pixels(c), scratch);
+                    tracer.pixel(c, first_row + j, out[j] + bytes_of_pixels(c), scratch);
                     if (c % 4 == 3) sink.still_rendering();  // a row of a large scene takes seconds here
                 }
             }

@@ -240,9 +240,8 @@ int main(int argc, char** argv) {
             for (int r = next_row.fetch_add(kBandRows); r < scene.rows; r = next_row.fetch_add(kBandRows))
                 for (int row = r; row < std::min(r + kBandRows, scene.rows); ++row) {
                     std::uint8_t* const out = pixels.data() + static_cast<std::size_t>(row) * row_bytes;
-                    const double y = tracer.row_y(row);
                     for (int c = 0; c < scene.columns; ++c)
-                        tracer.pixel(tracer.column_x(c), y, out + static_cast<std::size_t>(c) * 3, scratch);
+                        tracer.pixel(c, row, out + rt::bytes_of_pixels(c), scratch);
                 }
         };
         std::vector<std::thread> helpers;

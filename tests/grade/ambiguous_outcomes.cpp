@@ -79,7 +79,8 @@ std::set<Bytes3> nudged_outcomes(const Course& c, int x, int y) {
     for (int k = 0; k < 16; ++k) {
         const double angle = 2 * 3.141592653589793 * k / 16;
         Bytes3 bytes;
-        c.reference->pixel(px + nudge * std::cos(angle), py + nudge * std::sin(angle), bytes.data(), scratch);
+        c.reference->pixel_through(px + nudge * std::cos(angle), py + nudge * std::sin(angle), bytes.data(),
+                                   scratch);
         outcomes.insert(bytes);
     }
     return outcomes;
@@ -235,7 +236,7 @@ TEST(each_ambiguous_pixel_has_the_key_outcome_and_the_table_outcome_and_no_third
         const double x = c.reference->column_x(p.x), y = c.reference->row_y(p.y);
         const Bytes3 key = key_bytes(c.key, p.x, p.y);
         Bytes3 centre;
-        c.reference->pixel(x, y, centre.data(), scratch);
+        c.reference->pixel_through(x, y, centre.data(), scratch);
         const std::string where =
             std::string(p.key) + " (" + std::to_string(p.x) + ", " + std::to_string(p.y) + ")";
         expect(centre == key, __LINE__, where + ": the reference does not give the key's bytes");

@@ -56,9 +56,13 @@ public:
     };
     Scratch make_scratch() const { return {std::vector<std::uint32_t>(lights_.size(), kNoEllipsoid)}; }
 
-    // The three bytes of the pixel whose eye ray goes from the camera through (x, y)
-    // (pixel_bytes(): image.h, SPEC section 6).
-    void pixel(Real x, Real y, std::uint8_t* out, Scratch& scratch) const {
+    // The three bytes of the pixel of column c and row r (pixel_bytes(): image.h, SPEC
+    // section 6), whose eye ray goes from the camera through (column_x(c), row_y(r)); and
+    // of an eye ray through any (x, y) on the near plane.
+    void pixel(int c, int r, std::uint8_t* out, Scratch& scratch) const {
+        pixel_through(column_x(c), row_y(r), out, scratch);
+    }
+    void pixel_through(Real x, Real y, std::uint8_t* out, Scratch& scratch) const {
         pixel_bytes(eye_ray_colour({x, y, near_z_}, scratch), out);
     }
     // The colour seen from the camera along direction (before conversion to bytes).
