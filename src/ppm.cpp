@@ -21,13 +21,13 @@
 namespace rt {
 
 P6Writer::P6Writer(PendingFile& file, int width, int height)
-    : file_(file), expected_(bytes_of_pixels(width, height)) {
+    : file_(file), pixel_bytes_expected_(bytes_of_pixels(width, height)) {
     if (!file_.error().empty()) {
         failed_.store(true, std::memory_order_relaxed);
         return;
     }
     const std::string header = "P6\n" + std::to_string(width) + ' ' + std::to_string(height) + "\n255\n";
-    file_.expect_size(header.size() + expected_);
+    file_.expect_size(header.size() + pixel_bytes_expected_);
     file_.write(header.data(), header.size());
     if (file_.write_failed()) failed_.store(true, std::memory_order_relaxed);
 }
@@ -35,15 +35,15 @@ P6Writer::P6Writer(PendingFile& file, int width, int height)
 void P6Writer::write_rows(const std::uint8_t* bytes, std::size_t size) {
     if (!file_.error().empty()) return;
     file_.write(bytes, size);
-    written_ += size;
+    pixel_bytes_written_ += size;
     if (file_.write_failed()) failed_.store(true, std::memory_order_relaxed);
 }
 
 std::string P6Writer::commit() {
     if (!file_.error().empty()) return file_.error();
-    if (written_ != expected_) {  // not committed: the file's destructor removes it
-        return "the image's rows came incomplete (" + std::to_string(written_) + " of " +
-               std::to_string(expected_) + " bytes)";
+    if (pixel_bytes_written_ != pixel_bytes_expected_) {  // not committed: the file's destructor removes it
+        return "the image's rows came incomplete (" + std::to_string(pixel_bytes_written_) + " of " +
+               std::to_string(pixel_bytes_expected_) + " bytes)";
     }
     return file_.commit();
 }

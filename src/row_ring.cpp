@@ -33,7 +33,7 @@ RowRing::RowRing(RowSink& sink, int rows, std::size_t row_bytes, int band_rows, 
       finished_(new std::atomic<bool>[static_cast<std::size_t>(std::max(1, rows))]()) {}
 
 void RowRing::hand_over(int at_least) {
-    int from = written_.load(std::memory_order_relaxed), end = from;
+    int from = rows_written_.load(std::memory_order_relaxed), end = from;
     while (end < rows_ && finished_[static_cast<std::size_t>(end)].load(std::memory_order_acquire)) ++end;
     sink_.rows_finished(end);
     if (end - from < std::max(1, at_least)) return;
@@ -42,11 +42,11 @@ void RowRing::hand_over(int at_least) {
         sink_.write_rows(row(from), static_cast<std::size_t>(to - from) * row_bytes_);
         from = to;
     }
-    written_.store(end, std::memory_order_release);  // their slots are free
+    rows_written_.store(end, std::memory_order_release);  // their slots are free
 }
 
 void RowRing::reserve(int end) {
-    while (end - written_.load(std::memory_order_acquire) > ring_rows_) {
+    while (end - rows_written_.load(std::memory_order_acquire) > ring_rows_) {
         {
             // Where another thread is writing, this one sleeps until it is done: that
             // write may wait long on a slow reader of a pipe.
@@ -54,7 +54,7 @@ void RowRing::reserve(int end) {
             hand_over(1);
         }
         // The rows before are not all finished: an older band is still being rendered.
-        if (end - written_.load(std::memory_order_acquire) > ring_rows_) std::this_thread::yield();
+        if (end - rows_written_.load(std::memory_order_acquire) > ring_rows_) std::this_thread::yield();
     }
 }
 

@@ -28,8 +28,8 @@ public:
 
 private:
     PendingFile& file_;
-    std::size_t expected_ = 0, written_ = 0;  // pixel bytes
-    std::atomic<bool> failed_{false};         // file_'s error, for the render's threads
+    std::size_t pixel_bytes_expected_ = 0, pixel_bytes_written_ = 0;
+    std::atomic<bool> failed_{false};  // file_'s error, for the render's threads
 };
 
 // Writes a P6 image into a pending file (its error() must be empty) and commits it.

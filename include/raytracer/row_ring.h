@@ -63,7 +63,7 @@ public:
     static constexpr int kBandsPerThread = 8;
 
 private:
-    // Gives the sink the finished rows from written_ on, if at least at_least of them.
+    // Gives the sink the finished rows from rows_written_ on, if at least at_least of them.
     // Under writing_.
     void hand_over(int at_least);
 
@@ -75,7 +75,7 @@ private:
     const std::unique_ptr<std::atomic<bool>[]> finished_;
     std::mutex writing_;
     // Rows given to the sink: changed under writing_, read by threads waiting for slots.
-    std::atomic<int> written_{0};
+    std::atomic<int> rows_written_{0};
 };
 
 }  // namespace rt
