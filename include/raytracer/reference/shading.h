@@ -26,7 +26,7 @@
 
 namespace rt {
 
-// A LIGHT of the scene in the renderer's precision.
+// A LIGHT of the scene in the renderer's precision, and the scene's lights as such.
 template <typename Real>
 struct PointLight {
     Vec3<Real> position, intensity;
@@ -82,10 +82,10 @@ bool ambient_only(const Ellipsoid<Real>& e) {
 // What shading knows of an ellipsoid before any ray, made once per scene.
 template <typename Real>
 struct SurfaceConstants {
-    Vec3<Real> ambient_term;        // ambient_term(): Ka * Ia * O
-    bool no_lighting;               // no_lighting(): no light adds anything
-    bool ambient_only;              // ambient_only(): the colour is the ambient term
-    std::uint8_t ambient_bytes[3];  // pixel_bytes() of the ambient term
+    Vec3<Real> ambient_term;                     // ambient_term(): Ka * Ia * O
+    bool no_lighting;                            // no_lighting(): no light adds anything
+    bool ambient_only;                           // ambient_only(): the colour is the ambient term
+    std::uint8_t ambient_bytes[kBytesPerPixel];  // pixel_bytes() of the ambient term
 };
 template <typename Real>
 SurfaceConstants<Real> surface_constants(const Vec3<Real>& ambient_light, const Ellipsoid<Real>& e) {
