@@ -224,8 +224,8 @@ struct SceneExtent {
 // too, so that the box's own rounding stays inside the gap even for a small ellipsoid
 // far from the origin, and by the smallest subnormal, as a scale below 500 of them is
 // its own product with 1 + kCullingGap: a gap of one ulp is still > kCullingGap of it.
-// Computed where a leaf is visited, not stored: 48 bytes an ellipsoid would take random
-// 100k's prepared peak past 64 MiB.
+// Computed where a leaf is visited, not stored: 48 bytes more an ellipsoid, and no
+// faster measured (docs/speed.md, "Tried and dropped").
 template <typename C, typename Real>
 BuildBox<C> inflated_box(const Ellipsoid<Real>& e, const BoxGaps<Real>& gaps) {
     using std::abs;
