@@ -11,7 +11,6 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
-#include <vector>
 
 #include "raytracer/accel/blocker_hints.h"
 #include "raytracer/accel/cleared_lanes.h"
@@ -41,9 +40,7 @@ public:
 
     explicit WhittedTiles(const Tracer& tracer)
         : tracer_(tracer), hints_(tracer.ellipsoid_count(), tracer.light_count()) {
-        std::vector<V> lights(tracer.light_count());
-        for (std::size_t li = 0; li < lights.size(); ++li) lights[li] = tracer.light_position(li);
-        shells_ = LightShells<Real>(tracer.geometry(), lights);
+        shells_ = LightShells<Real>(tracer.geometry(), positions_of(tracer.lights()));
         std::uint8_t background[kBytesPerPixel];
         pixel_bytes(tracer.background(), background);
         for (int c = 0; c < kSpanColumns; ++c)

@@ -51,12 +51,10 @@ public:
           lights_(point_lights<Real>(scene)),
           background_(V::from(scene.background)) {
         const V ambient_light = V::from(scene.ambient);
-        std::vector<V> light_positions;
-        for (const PointLight<Real>& l : lights_) light_positions.push_back(l.position);
         for (const Ellipsoid<Real>& e : ellipsoids_) surfaces_.push_back(surface_constants(ambient_light, e));
         bounds_ = SphereBounds<Real>(ellipsoids_);
         for (const Ellipsoid<Real>& e : ellipsoids_) eye_origin_.push_back(mapped_origin(e, V{}));
-        enclosures_ = Enclosures<Real>(ellipsoids_, light_positions);
+        enclosures_ = Enclosures<Real>(ellipsoids_, positions_of(lights_));
         // Shadow rays are tested a packet at a time (lit_lanes()) and no other way, so
         // the flat sweep renders a scene only where that pays (can_render(); the tree
         // takes the others): where the image has at least as many pixels as there are

@@ -26,7 +26,8 @@
 
 namespace rt {
 
-// A LIGHT of the scene in the renderer's precision, and the scene's lights as such.
+// A LIGHT of the scene in the renderer's precision; the scene's lights as such, and
+// their positions.
 template <typename Real>
 struct PointLight {
     Vec3<Real> position, intensity;
@@ -38,6 +39,13 @@ std::vector<PointLight<Real>> point_lights(const Scene& scene) {
     for (const LightSpec& l : scene.lights)
         lights.push_back({Vec3<Real>::from(l.position), Vec3<Real>::from(l.intensity)});
     return lights;
+}
+template <typename Real>
+std::vector<Vec3<Real>> positions_of(const std::vector<PointLight<Real>>& lights) {
+    std::vector<Vec3<Real>> positions;
+    positions.reserve(lights.size());
+    for (const PointLight<Real>& l : lights) positions.push_back(l.position);
+    return positions;
 }
 
 // What shading needs of an ellipsoid's material, per ray for lanes.

@@ -103,6 +103,7 @@ public:
     // For the tree's tiles, which shade many hits at once (whitted_tiles.h).
     const SurfaceConstants<Real>& surface(std::uint32_t i) const { return surfaces_[i]; }
     std::size_t ellipsoid_count() const { return surfaces_.size(); }
+    const std::vector<PointLight<Real>>& lights() const { return lights_; }
     std::size_t light_count() const { return lights_.size(); }
     const V& light_position(std::size_t li) const { return lights_[li].position; }
     const V& light_intensity(std::size_t li) const { return lights_[li].intensity; }
