@@ -15,7 +15,7 @@
 namespace rt {
 
 namespace {
-// A tile: kBandRows rows by kTileColumns columns, traced together (whitted_tiles.h).
+// A tile's columns: a band of kBandRows rows is a row of tiles (whitted_tiles.h).
 constexpr int kTileColumns = 4;
 }  // namespace
 
@@ -26,9 +26,7 @@ void render_tree_to(const Scene& scene, RowSink& sink, unsigned threads) {
         scene.spheres.size(), [&scene](std::size_t i) { return make_ellipsoid<Real>(scene.spheres[i]); },
         threads_asked(threads));
     const Whitted<Real, Bvh<Real>> tracer(scene, std::move(tree));
-    using Tiles = WhittedTiles<kBandRows * kTileColumns, Real, Bvh<Real>>;
-    static_assert(Tiles::kRows == kBandRows, "a band is a row of tiles");
-    const Tiles tiles(tracer);
+    const WhittedTiles<Real, Bvh<Real>, kBandRows, kTileColumns> tiles(tracer);
     const std::vector<Real> column_x = column_xs<Real>(scene);
     render_bands(
         scene, sink, threads, [&] { return tiles.make_scratch(); },

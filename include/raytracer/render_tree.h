@@ -9,7 +9,8 @@
 
 namespace rt {
 
-// Instantiated for float, double and long double; threads = 0: all cores.
+// Instantiated for double in raytracer.exe, for float and long double in
+// raytracer_precisions (render.cpp); threads = 0: all cores.
 template <typename Real>
 void render_tree_to(const Scene& scene, RowSink& sink, unsigned threads = 0);
 

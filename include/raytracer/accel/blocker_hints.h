@@ -1,5 +1,7 @@
 // Where a shadow query starts (Bvh::occluded()'s blocker): per ellipsoid and light, the
 // ellipsoid that last blocked a shadow ray from that ellipsoid's surface to that light.
+// Two numberings: the key is the scene's index of the ellipsoid the rays start on (a
+// NearestHit's), the hint a position in the tree's leaf order (what occluded() takes).
 #pragma once
 
 #include <atomic>

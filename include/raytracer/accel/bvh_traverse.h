@@ -17,9 +17,9 @@ namespace rt {
 template <typename Real, int Width>
 template <typename Bvh<Real, Width>::Visit kVisit, typename Leaf>
 void Bvh<Real, Width>::traverse(const OneRay& ray, C t1, Leaf leaf) const {
-    if (items_.empty()) return;
+    if (ellipsoids_.empty()) return;
     if (!ray.sloped)
-        leaf(Child{0, static_cast<std::uint32_t>(items_.size())}, t1);
+        leaf(Child{0, static_cast<std::uint32_t>(ellipsoids_.size())}, t1);
     else if (ray.guarded)
         traverse<kVisit, true>(ray.slab, t1, leaf);
     else
@@ -72,13 +72,13 @@ void Bvh<Real, Width>::traverse(const SlabRay<C>& ray, C t1, Leaf leaf) const {
 template <typename Real, int Width>
 template <int Rows, int Columns>
 void Bvh<Real, Width>::closest(EyeBlock<Real, Rows, Columns>& block) const {
-    if (items_.empty()) return;
+    if (ellipsoids_.empty()) return;
     C d_lo[3], d_hi[3];
     block.directions(d_lo, d_hi);
     const C o[3] = {0, 0, 0};
     SlabRay<C> ray;
     auto add_all = [&] {  // a direction without a finite inverse
-        for (std::uint32_t i = 0; i < items_.size(); ++i) block.add(items_[i], index_[i]);
+        for (std::uint32_t i = 0; i < ellipsoids_.size(); ++i) block.add(ellipsoids_[i], index_[i]);
     };
     if (!make_slab_ray(o, o, d_lo, d_hi, least_direction_, ray)) return add_all();
     if (!guarded(o, o)) {  // the camera beyond some guard: ray by ray, each culled where it may be
@@ -88,11 +88,11 @@ void Bvh<Real, Width>::closest(EyeBlock<Real, Rows, Columns>& block) const {
         return;
     }
     auto descend = [&](const SlabRay<C>& part) {
-        const C t1 = block.tried() ? C(block.farthest()) : std::numeric_limits<C>::infinity();
-        traverse<Visit::NearestFirst, true>(part, t1, [&](Child leaf, C& t1) {
+        const C start = block.tried() ? C(block.farthest()) : std::numeric_limits<C>::infinity();
+        traverse<Visit::NearestFirst, true>(part, start, [&](Child leaf, C& t1) {
             for (std::uint32_t i = leaf.first; i < leaf.first + leaf.count; ++i) {
-                const BuildBox<C> box = inflated_box<C>(items_[i], gaps_);
-                if (meets_box(part, box, t1)) block.add(items_[i], index_[i], &box);
+                const BuildBox<C> box = inflated_box<C>(ellipsoids_[i], gaps_);
+                if (meets_box(part, box, t1)) block.add(ellipsoids_[i], index_[i], &box);
             }
             if (block.tried()) t1 = C(block.farthest());
             return false;
@@ -124,7 +124,7 @@ void Bvh<Real, Width>::boxes_holding(const V& point, F f) const {
         const Child child = to_visit.back();
         to_visit.pop_back();
         for (std::uint32_t k = child.first; k < child.first + child.count; ++k) f(index_[k]);
-        if (child.count > 0 || items_.empty()) continue;
+        if (child.count > 0 || ellipsoids_.empty()) continue;
         const Node& node = nodes_[child.first];
         for (int k = 0; k < Width; ++k) {
             bool holds = (node.used >> k) & 1U;

@@ -154,7 +154,9 @@ public:
         const Real sx = e.scale.x;
         RT_VECTOR_LOOP
         for (int c = 0; c < Columns; ++c) dx[c] = x_[c] / sx;
-        // Rows outside the silhouette are skipped too, where pixels are apart (silhouette.h).
+        // Rows outside the silhouette are skipped too, where pixels are apart (silhouette.h),
+        // and only where a box was met: add() without one (Bvh's add_all()) is the
+        // unculled fallback, and stays unculled.
         const Silhouette<C> silhouette(e, C(near_z_));
         const bool narrow = box != nullptr && margin_ > 0;
         for (int b = 0; b < rows_; ++b) {
@@ -173,7 +175,7 @@ private:
         tried_ = true;
         auto inverse = [this](Real d) {
             const C inv = 1 / C(d);
-            unculled_ = unculled_ || (d != 0 && !(std::abs(inv) <= std::numeric_limits<C>::max()));
+            unculled_ = unculled_ || unbounded_inverse(C(d), inv);
             return inv;
         };
         for (int c = 0; c < Columns; ++c) inverse_x_[c] = inverse(x_[c]);

@@ -2,12 +2,12 @@
 // the rays of a bundle in the tree's leaves (slab_rays.h), and the flat sweep's mirrored
 // rays of a packet of hits (PacketTracer::reflections()).
 //
-// WHY: one ray at a time, intersect() is four divisions and a square root with branches
-// in between (in the mirror room of tests/bench/heavy.txt, where every hit reflects, a
-// fifth of the flat sweep's time). Here the lanes run the one root solver,
-// unit_sphere_roots(), in a loop that GCC and Clang turn into vector instructions
-// (which round as scalar ones do: no fused multiply-adds, CMakeLists.txt), on the same
-// inputs intersect() gives it: each lane gets intersect()'s roots bit for bit.
+// WHY: one ray at a time, intersect() is seven divisions (three for o', three for d', one
+// in unit_roots()) and a square root with branches in between (in the mirror room of
+// tests/bench/heavy.txt, where every hit reflects, a fifth of the flat sweep's time). Here the lanes run the
+// one root solver, unit_sphere_roots(), in a loop that GCC and Clang turn into vector instructions (which
+// round as scalar ones do: no fused multiply-adds, CMakeLists.txt), on the same inputs intersect() gives it:
+// each lane gets intersect()'s roots bit for bit.
 #pragma once
 
 #include "raytracer/compiler.h"

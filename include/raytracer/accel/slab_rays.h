@@ -40,6 +40,13 @@ struct SlabRay {
     C hi_from[3], hi_inv[3];  // for its high planes: o_lo, 1 / d_lo
 };
 
+// Whether a direction's component d has an inverse that is not finite though d is not 0:
+// a subnormal, whose infinite inverse makes a slab's t infinite where it is finite.
+template <typename C>
+RT_ALWAYS_INLINE bool unbounded_inverse(C d, C inv) {
+    return d != 0 && !(std::abs(inv) <= std::numeric_limits<C>::max());
+}
+
 // The slab ray of a bundle's edges, or false where boxes may not cull its rays, which
 // are then tried against every ellipsoid:
 // - a direction has a component without a finite inverse (a subnormal scene: an
@@ -65,8 +72,7 @@ RT_ALWAYS_INLINE bool make_slab_ray(const C (&o_lo)[3], const C (&o_hi)[3], cons
         // -0 as +0, so that a zero's sign follows the cases below.
         ray.lo_from[a] = o_hi[a], ray.lo_inv[a] = 1 / (d_hi[a] == 0 ? C(0) : d_hi[a]);
         ray.hi_from[a] = o_lo[a], ray.hi_inv[a] = 1 / (d_lo[a] == 0 ? C(0) : d_lo[a]);
-        if ((d_hi[a] != 0 && !(std::abs(ray.lo_inv[a]) <= std::numeric_limits<C>::max())) ||
-            (d_lo[a] != 0 && !(std::abs(ray.hi_inv[a]) <= std::numeric_limits<C>::max())))
+        if (unbounded_inverse(d_hi[a], ray.lo_inv[a]) || unbounded_inverse(d_lo[a], ray.hi_inv[a]))
             return false;
         if (d_lo[a] < 0 && d_hi[a] >= 0) ray.hi_from[a] = -kInf, ray.hi_inv[a] = 1;  // q = +inf
         if (d_lo[a] >= 0 && d_hi[a] < 0) ray.lo_from[a] = kInf, ray.lo_inv[a] = 1;   // p = -inf
@@ -87,7 +93,7 @@ RT_ALWAYS_INLINE void clip_to_slab(C p, C q, C& enter, C& leave) {
 }
 
 // Whether a ray from within every guard distance, or a bundle of them, may meet the
-// box within [0, t1]: Bvh::meets() for one box.
+// box within [0, t1]: children_met()'s test for one box.
 template <typename C>
 RT_ALWAYS_INLINE bool meets_box(const SlabRay<C>& ray, const BuildBox<C>& box, C t1) {
     C enter = 0, leave = t1;
@@ -99,7 +105,8 @@ RT_ALWAYS_INLINE bool meets_box(const SlabRay<C>& ray, const BuildBox<C>& box, C
 
 // Whether a ray from within the box [o_lo, o_hi] is within every guard distance of the
 // ellipsoids in bounds, the least of which is guard (nearly every ray: the scene is far
-// smaller than 1e6 of its smallest scale), so that no node needs its guards checked.
+// smaller than the 2e10 smallest scales of BoxGaps::guard()), so that no node needs its
+// guards checked.
 template <typename C>
 bool within_guard(const BuildBox<C>& bounds, C guard, const C (&o_lo)[3], const C (&o_hi)[3]) {
     C farthest = 0;
@@ -279,13 +286,12 @@ struct LaneRays {
             along[0][k] = in ? d.x : 0, along[1][k] = in ? d.y : 0, along[2][k] = in ? d.z : 0;
             t1[k] = in ? end : 0;
         }
-        unsigned unbounded = 0;  // an inverse of a non-zero direction that is not finite
+        unsigned unbounded = 0;
         for (int a = 0; a < 3; ++a) {
             RT_VECTOR_LOOP
             for (int k = 0; k < N; ++k) {
                 inv[a][k] = 1 / C(along[a][k]);
-                const bool finite = along[a][k] == 0 || std::abs(inv[a][k]) <= std::numeric_limits<C>::max();
-                unbounded |= finite ? 0U : 1U << k;
+                unbounded |= unbounded_inverse(C(along[a][k]), inv[a][k]) ? 1U << k : 0U;
             }
         }
         unculled = unbounded & lanes;

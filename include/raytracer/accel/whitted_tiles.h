@@ -1,9 +1,18 @@
 // The reference path (whitted.h) for a tile of pixels at once: each pixel gets the bytes
 // Whitted::pixel() gives it, from the same pieces of shade() in the same order, but the
-// eye rays of two tiles go down the tree as one block (eye_block.h), and the shadow rays
-// of a tile's hits to one light as one bundle (Bvh::occluded() for lanes): each
-// descends the tree once for all of its rays. The tile's reflected rays are traced as a
-// tile in turn, down to the last bounce.
+// eye rays of two tiles go down the tree as one block (eye_block.h), and per light the
+// shadow rays of a tile's hits on one ellipsoid, where at least four lie close together,
+// as one bundle (close_lanes(), Bvh::occluded() for lanes); the rest go ray by ray. The
+// tile's reflected rays are traced as a tile in turn, down to the last bounce.
+//
+// The parts of the image, largest first:
+//   band   Rows rows, one job of render_bands() (kBandRows);
+//   span   kSpanColumns columns of a band, drawn as BACK at once where no eye ray of it
+//          can meet a box (Bvh::may_meet());
+//   block  kBlockColumns columns of a span, whose eye rays descend the tree together
+//          (EyeBlock);
+//   tile   Rows x Columns pixels of a block, shaded together as kLanes lanes;
+//   chunk  kChunk lanes of a tile, one vector register (kRegisterLanes).
 #pragma once
 
 #include <algorithm>
@@ -30,11 +39,12 @@
 
 namespace rt {
 
-template <int N, typename Real, typename Geometry>
+template <typename Real, typename Geometry, int Rows, int Columns>
 class WhittedTiles {
 public:
     using Tracer = Whitted<Real, Geometry>;
     using V = Vec3<Real>;
+    static constexpr int N = Rows * Columns;  // a tile's lanes: pixel (b, c) is lane b * Columns + c
     static_assert(N >= 1 && N <= 32, "a tile's lanes are the bits of an unsigned");
     static_assert(N % kRegisterLanes<Real, N> == 0, "whole registers");
 
@@ -79,14 +89,14 @@ public:
     };
     Scratch make_scratch() const { return {OwnLinesVector<Bounce>(kMaxReflections + 1)}; }
 
-    // The bytes of a band of `rows` <= kRows rows, the eye rays of row b through y[b] on
+    // The bytes of a band of `rows` <= Rows rows, the eye rays of row b through y[b] on
     // the near plane and its bytes from out[b], and `columns` columns, column c's through
-    // column_x[c]. A span of kSpanColumns columns whose eye rays can meet no ellipsoid's
-    // box (Bvh::may_meet()) gets BACK's bytes at once; in the others the eye rays go to
-    // the tree a block of kBlockColumns columns at a time (eye_block.h), and are shaded a
-    // tile of kRows x kColumns pixels at a time.
-    static constexpr int kRows = 4, kColumns = N / kRows, kBlockColumns = 2 * kColumns,
-                         kSpanColumns = 4 * kBlockColumns;
+    // column_x[c]. A span whose eye rays can meet no ellipsoid's box gets BACK's bytes at
+    // once; in the others the eye rays go to the tree a block at a time, and are shaded a
+    // tile at a time. Blocks of two tiles and spans of four blocks: blocks of 32 columns
+    // were up to 5% slower on sphereflake 5 and random 100k (docs/speed.md, "Tried and
+    // dropped").
+    static constexpr int kBlockColumns = 2 * Columns, kSpanColumns = 4 * kBlockColumns;
     void band(const Real* column_x, int columns, const Real* y, std::uint8_t* const* out, int rows,
               Scratch& scratch) const {
         using C = AtLeastDouble<Real>;
@@ -101,8 +111,8 @@ public:
             const C x_lo = std::min(x_first, x_last), x_hi = std::max(x_first, x_last);
             if (tracer_.geometry().may_meet(V{}, {x_lo, y_lo, near_z}, {x_hi, y_hi, near_z})) {
                 for (int block = span; block < span_end; block += kBlockColumns)
-                    eye_block(column_x, block, std::min(block + kBlockColumns, span_end), y, out, rows,
-                              scratch);
+                    shade_block(column_x, block, std::min(block + kBlockColumns, span_end), y, out, rows,
+                                scratch);
                 continue;
             }
             fill_background(out, rows, span, span_end);
@@ -118,20 +128,20 @@ private:
 
     // The pixels of columns [first, last) of a band (band()): their eye rays' hits from
     // the tree, then tiles of those that hit something shaded; BACK where they miss.
-    void eye_block(const Real* column_x, int first, int last, const Real* y, std::uint8_t* const* out,
-                   int rows, Scratch& scratch) const {
-        EyeBlock<Real, kRows, kBlockColumns> rays(column_x + first, last - first, y, rows, tracer_.near_z());
+    void shade_block(const Real* column_x, int first, int last, const Real* y, std::uint8_t* const* out,
+                     int rows, Scratch& scratch) const {
+        EyeBlock<Real, Rows, kBlockColumns> rays(column_x + first, last - first, y, rows, tracer_.near_z());
         tracer_.geometry().closest(rays);
         Bounce& eye = scratch.bounces[0];
-        for (int c0 = first; c0 < last; c0 += kColumns) {
-            const int c_end = std::min(c0 + kColumns, last);
+        for (int c0 = first; c0 < last; c0 += Columns) {
+            const int c_end = std::min(c0 + Columns, last);
             fill_background(out, rows, c0, c_end);  // where a ray misses; a hit's bytes overwrite it
             if (!rays.tried()) continue;
             std::uint8_t* tile_out[N];  // only the lanes in hits are read
             unsigned hits = 0;
             for (int b = 0; b < rows; ++b)
                 for (int c = c0; c < c_end; ++c) {
-                    const int k = b * kColumns + (c - c0);
+                    const int k = b * Columns + (c - c0);
                     eye.hit[k] = rays.hit(b, c - first);
                     if (!eye.hit[k].found()) continue;
                     std::uint8_t* const bytes = out[b] + bytes_of_pixels(c);
@@ -166,7 +176,7 @@ private:
     // time), its branches as lane sets.
     void shade(int depth, unsigned lanes, Scratch& scratch) const {
         Bounce& b = scratch.bounces[static_cast<std::size_t>(depth)];
-        const HitLanes h = gather(b, lanes, depth < kMaxReflections);
+        const HitLanes h = gather(b, lanes, kMaxReflections - depth);
         const Vec3<Q> miss = Vec3<Q>::from(V{});
         static_assert(LightShells<Real>::kMax + 1 <= ClearedLanes::kMax, "room for the shells and the own");
         unsigned in_shell[LightShells<Real>::kMax] = {};  // the lanes whose points each shell holds
@@ -184,7 +194,7 @@ private:
                 in_shell[s] |= static_cast<unsigned>(shells_.holding(s, c.surface.point) << (i * kChunk));
         }
         if (h.hits == 0) return;
-        for (std::size_t li = 0; li < tracer_.light_count() && h.lit != 0; ++li)
+        for (std::size_t li = 0; li < tracer_.light_count() && h.lightable != 0; ++li)
             add_light_lanes(b, h, li, in_shell);
         if (h.reflecting == 0) return;
         Bounce& next = scratch.bounces[static_cast<std::size_t>(depth) + 1];
@@ -208,11 +218,11 @@ private:
     // The lanes of a bounce that hit something, that some light may reach (Kd or Ks
     // not 0), that reflect (Kr > 0, a bounce left), and that see an inner surface.
     struct HitLanes {
-        unsigned hits = 0, lit = 0, reflecting = 0;
+        unsigned hits = 0, lightable = 0, reflecting = 0;
         LaneBits inside = 0;
     };
     // Each hit's terms into its lane.
-    HitLanes gather(Bounce& b, unsigned lanes, bool may_reflect) const {
+    HitLanes gather(Bounce& b, unsigned lanes, int reflections_left) const {
         HitLanes h;
         for (unsigned m = lanes; m != 0; m &= m - 1) {
             const int k = lowest_bit(m), j = k % kChunk;
@@ -229,8 +239,8 @@ private:
             set_lane(c.finish, j, finish_of(e));
             h.inside |= hit.inside ? LaneBits(1) << k : 0;
             h.hits |= 1U << k;
-            h.lit |= surface.no_lighting ? 0U : 1U << k;
-            h.reflecting |= may_reflect && e.kr > 0 ? 1U << k : 0U;
+            h.lightable |= surface.no_lighting ? 0U : 1U << k;
+            h.reflecting |= reflects(e, reflections_left) ? 1U << k : 0U;
         }
         for (Chunk& c : b.chunk) share_exponent(c.finish);
         lanes_on_one_ellipsoid(b, h.hits);
@@ -259,7 +269,7 @@ private:
         unsigned facing = 0;     // with a light ray to try
         unsigned own_clear = 0;  // whose own ellipsoid cannot block their shadow ray (seen from outside)
         for (int i = 0; i < kChunks; ++i) {
-            if (part(h.lit, i) == 0) continue;
+            if (part(h.lightable, i) == 0) continue;
             const Chunk& c = b.chunk[i];
             r[i] = light_ray(c.surface, light);
             facing |= static_cast<unsigned>(r[i].faces << (i * kChunk));
@@ -267,7 +277,7 @@ private:
                 leaves_own_ellipsoid<Real>(c.surface.scaled_length, r[i].distance, r[i].n_dot_l, c.abs_c)
                 << (i * kChunk));
         }
-        facing &= h.lit, own_clear &= static_cast<unsigned>(~h.inside);
+        facing &= h.lightable, own_clear &= static_cast<unsigned>(~h.inside);
         // This light's shells, for the lanes they hold, then a bundle's own ellipsoid
         // after them (set in place: a copy of the shells' list per bundle, read whole
         // just after its last entry was written, stalled on the store).
@@ -312,9 +322,9 @@ private:
         using C = AtLeastDouble<Real>;
         C lo[3], hi[3];
         bounds_of(b.point, bundle, lo, hi);
-        using std::abs;
-        const Ellipsoid<Real>& e = tracer_.geometry().ellipsoid(b.hit[first].ellipsoid);
-        const C diameter = 2 * C(std::min({abs(e.scale.x), abs(e.scale.y), abs(e.scale.z)}));
+        C scales[3];
+        abs_scales(tracer_.geometry().ellipsoid(b.hit[first].ellipsoid), scales);
+        const C diameter = 2 * smallest_of(scales);
         const bool close =
             hi[0] - lo[0] <= diameter && hi[1] - lo[1] <= diameter && hi[2] - lo[2] <= diameter;
         return close ? bundle : 1U << first;

@@ -29,13 +29,8 @@ public:
         const Real beyond = visible_beyond(Real(min_t));
         NearestHit<Real> best;
         const std::vector<Ellipsoid<Real>>& all = ellipsoids_;
-        for (std::uint32_t i = 0; i < all.size(); ++i) {
-            Real t;
-            bool inside;
-            if (visible_root(intersect(all[i], origin, direction), beyond, t, inside) &&
-                best.replaced_by(t, i))
-                best = {t, i, inside};
-        }
+        for (std::uint32_t i = 0; i < all.size(); ++i)
+            best.offer(intersect(all[i], origin, direction), beyond, i);
         return best;
     }
 

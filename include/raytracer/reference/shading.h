@@ -80,6 +80,13 @@ bool no_lighting(const Ellipsoid<Real>& e) {
     return specular_is_zero(e) && e.kd == 0;
 }
 
+// Whether a hit on e sends a mirrored ray: Kr > 0, and a bounce left of the
+// kMaxReflections (spec_rules.h).
+template <typename Real>
+bool reflects(const Ellipsoid<Real>& e, int reflections_left) {
+    return e.kr > 0 && reflections_left > 0;
+}
+
 // Whether e's colour is its ambient term alone wherever it is seen: no light nor mirror
 // adds to it, so the fast paths know its pixels' bytes before any ray.
 template <typename Real>

@@ -112,6 +112,15 @@ struct NearestHit {
     bool replaced_by(Real root, std::uint32_t i) const {
         return !found() || root < t || (root == t && i < ellipsoid);
     }
+    // Takes the root the ray sees of ellipsoid i (visible_root() beyond `beyond`) where
+    // it is to replace this hit; whether it did.
+    bool offer(const Roots<Real>& roots, Real beyond, std::uint32_t i) {
+        Real root;
+        bool seen_inside;
+        if (!visible_root(roots, beyond, root, seen_inside) || !replaced_by(root, i)) return false;
+        *this = {root, i, seen_inside};
+        return true;
+    }
 };
 
 }  // namespace rt

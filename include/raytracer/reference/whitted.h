@@ -50,7 +50,8 @@ public:
     // last shadow ray was blocked by, which the geometry tries first for the next (its
     // occluded()): neighbouring pixels are mostly blocked by the same one. It never changes
     // an answer. Each geometry numbers it its own way (BruteForce by scene index, Bvh by
-    // position in leaf order).
+    // position in leaf order). The tree's tiles keep theirs per ellipsoid and light
+    // instead (blocker_hints.h).
     struct Scratch {
         std::vector<std::uint32_t> blocker_hints;
     };
@@ -93,7 +94,7 @@ public:
             if (r.faces && !geometry_.occluded(s.point, r.to_light, scratch.blocker_hints[li]))
                 add_light(colour, s, r, lights_[li].intensity, finish, /*lit=*/true);
         }
-        if (e.kr > 0 && reflections_left > 0)
+        if (reflects(e, reflections_left))
             colour += trace(s.point, mirrored(s.normal, direction), kReflectedRayMinT, reflections_left - 1,
                             /*miss=*/V{}, scratch) *
                       e.kr;
