@@ -40,9 +40,10 @@ struct Span {
     int first, last;
 };
 
-// Eye-ray hits on one ellipsoid waiting to be shaded together.
+// Eye-ray hits on one ellipsoid waiting to be shaded together, as one packet of lanes
+// (HitPacket, hit_packet.h) once kPacket have come or the band is done.
 template <typename Real>
-struct Packet {
+struct PendingEyeHits {
     int count = 0;
     Real dx[kPacket], dy[kPacket], dz[kPacket], t[kPacket];
     bool inside[kPacket];
@@ -60,12 +61,14 @@ struct Packet {
 };
 
 // Eye-ray hits are gathered into packets tile by tile: kTileRows rows by kTileColumns
-// columns, one packet's worth. WHY: a packet of pixels that lie close together in both
-// directions mirrors rays that stay together (they split into fewer, fuller packets at
-// each bounce), and its points lie in a smaller ball (LightCones rules out more spheres
-// for the whole packet). Measured on the heavy scene, one thread, medians of 21
-// interleaved runs: rows of 16 pixels 100.2 ms, tiles of 4 x 4 80.9 ms; instructions
-// with 8 lanes (x86-64-v3, callgrind): 1 x 8 858M, 2 x 4 818M, 4 x 2 825M, 8 x 1 894M.
+// columns, one packet's worth. Tiles set the order in which pixels join their
+// ellipsoid's packet, not its bounds: a packet is shaded when full or at the band's end,
+// so it may hold the tail of one tile and the head of the next. WHY: a packet of pixels that lie close
+// together in both directions mirrors rays that stay together (they split into fewer, fuller packets at each
+// bounce), and its points lie in a smaller ball (LightCones rules out more spheres for the whole packet).
+// Measured on the heavy scene, one thread, medians of 21 interleaved runs: rows of 16 pixels 100.2 ms, tiles
+// of 4 x 4 80.9 ms; instructions with 8 lanes (x86-64-v3, callgrind): 1 x 8 858M, 2 x 4 818M, 4 x 2 825M, 8 x
+// 1 894M.
 constexpr int kTileRows = kPacket >= 16 ? 4 : 2;
 constexpr int kTileColumns = kPacket / kTileRows;
 
@@ -76,11 +79,11 @@ struct alignas(OwnCacheLines<char>::kLine) Workspace {
     TraceScratch<Real> scratch;
     OwnLinesVector<Span> in_row;            // the row's ellipsoids
     OwnLinesVector<EyeRowHits<Real>> hits;  // per row of a band: each column's nearest hit (eye_rays.h)
-    OwnLinesVector<Packet<Real>> packets;   // per ellipsoid
-    OwnLinesVector<std::uint32_t> seen;     // the ellipsoids some row of the band may see (repeats allowed)
+    OwnLinesVector<PendingEyeHits<Real>> pending;  // per ellipsoid
+    OwnLinesVector<std::uint32_t> seen;  // the ellipsoids some row of the band may see (repeats allowed)
 
     Workspace(const PacketTracer<Real>& tracer, std::size_t ellipsoids, int columns)
-        : scratch(tracer.make_scratch()), hits(kTileRows, EyeRowHits<Real>(columns)), packets(ellipsoids) {
+        : scratch(tracer.make_scratch()), hits(kTileRows, EyeRowHits<Real>(columns)), pending(ellipsoids) {
         in_row.reserve(ellipsoids);
         seen.reserve(ellipsoids * kTileRows);
     }
@@ -166,12 +169,14 @@ private:
         std::copy(background_row_.begin(), background_row_.end(), band.out[r - band.first_row]);
         in_row.clear();
         int lo = scene_.columns, hi = -1;  // the columns some ellipsoid may cover
-        const double row_y_double = pixel_y(scene_.top, scene_.bottom, r, scene_.rows);
+        // The row's y for the spans, in double: it decides only which columns are traced,
+        // within the spans' margin of two columns (screen_bounds.h), never a pixel's value.
+        const double span_y = pixel_y(scene_.top, scene_.bottom, r, scene_.rows);
         const std::vector<PixelRect>& rects = tracer_.screen_rects();
         for (std::uint32_t i = 0; i < rects.size(); ++i) {
             Span span{i, rects[i].first_column, rects[i].last_column};
             if (rects[i].first_row <= r && r <= rects[i].last_row &&
-                spans_.narrow(i, row_y_double, span.first, span.last)) {
+                spans_.narrow(i, span_y, span.first, span.last)) {
                 in_row.push_back(span);
                 lo = std::min(lo, span.first);
                 hi = std::max(hi, span.last);
@@ -207,13 +212,13 @@ private:
                         std::copy(bytes, bytes + kBytesPerPixel, row_out + bytes_of_pixels(c));
                         continue;
                     }
-                    Packet<Real>& packet = work.packets[i];
-                    packet.add(column_x_[column], band.y[b], near_z_, hits.t[column],
-                               hits.inside[column] != 0, row_out + bytes_of_pixels(c));
-                    if (packet.count == kPacket) packet.shade(tracer_, i, work.scratch);
+                    PendingEyeHits<Real>& pending = work.pending[i];
+                    pending.add(column_x_[column], band.y[b], near_z_, hits.t[column],
+                                hits.inside[column] != 0, row_out + bytes_of_pixels(c));
+                    if (pending.count == kPacket) pending.shade(tracer_, i, work.scratch);
                 }
             }
-        for (const std::uint32_t i : work.seen) work.packets[i].shade(tracer_, i, work.scratch);
+        for (const std::uint32_t i : work.seen) work.pending[i].shade(tracer_, i, work.scratch);
     }
 
     const Scene& scene_;

@@ -1,6 +1,6 @@
-// A bounding sphere of an ellipsoid (sphere_bounds.h), and a sphere as seen from a
-// point: the light cones (light_cones.h) and the screen bounds (screen_bounds.h) start
-// from these.
+// A bounding sphere of an ellipsoid (sphere_bounds.h; the screen bounds,
+// screen_bounds.h, start from it), and a sphere as seen from a point (the light cones,
+// light_cones.h).
 #pragma once
 
 #include <cmath>

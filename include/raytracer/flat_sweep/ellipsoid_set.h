@@ -1,6 +1,6 @@
 // A set of the flat sweep's ellipsoids, a bit each: the blockers a shadow ray of a
-// packet may meet (light_cones.h), intersected and walked in
-// increasing order (PacketTracer::lit_lanes()).
+// packet may meet (light_cones.h), intersected and walked in increasing order, after the
+// light's last blocker (PacketTracer::lit_lanes()).
 //
 // WHY two widths: the sets are made per packet and light, so they live on the stack and
 // each operation is a loop over their words, unrolled. A scene of up to 64 ellipsoids

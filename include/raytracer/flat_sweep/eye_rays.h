@@ -28,7 +28,8 @@
 
 namespace rt {
 
-// Per column of the image (one per thread): the nearest hit found so far in the row.
+// Per column of the image (one per row of a thread's band): the nearest hit found so far
+// in the row.
 template <typename Real>
 struct EyeRowHits {
     OwnLinesVector<Real> t;                   // infinity until a hit is accepted
@@ -86,10 +87,10 @@ public:
         const Terms& e = terms_[i];
         if (e.table != kNoTable) {
             const Real* const dx = dx_.data() + (std::ptrdiff_t(e.table) - e.first_column);
-            intersect(hits, i, first, last, y, near_z, [&](int c) { return dx[c]; });
+            merge_columns(hits, i, first, last, y, near_z, [&](int c) { return dx[c]; });
         } else {
             const Real sx = e.scale.x;
-            intersect(hits, i, first, last, y, near_z, [&](int c) { return column_x[c] / sx; });
+            merge_columns(hits, i, first, last, y, near_z, [&](int c) { return column_x[c] / sx; });
         }
     }
 
@@ -97,8 +98,8 @@ private:
     // merge_eye_row() for ellipsoid i; column_dx(c) gives d'.x = x / s.x of column c.
     // Blocks of 16 to 128 columns measured alike.
     template <typename ColumnDx>
-    void intersect(EyeRowHits<Real>& hits, std::uint32_t i, int first, int last, Real y, Real near_z,
-                   ColumnDx column_dx) const {
+    void merge_columns(EyeRowHits<Real>& hits, std::uint32_t i, int first, int last, Real y, Real near_z,
+                       ColumnDx column_dx) const {
         const Terms& e = terms_[i];
         merge_eye_row<64>(MappedOrigin<Real>{e.o, e.c}, column_dx, y / e.scale.y, near_z / e.scale.z, i,
                           first, last + 1, hits.t.data(), hits.ellipsoid.data(), hits.inside.data());

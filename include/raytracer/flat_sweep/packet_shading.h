@@ -20,10 +20,11 @@
 
 namespace rt {
 
-// The nearest hits of kPacket rays with t > min_t, ray k from (ox, oy, oz)[k] along
-// (dx, dy, dz)[k], as the reference finds them (BruteForce::closest(), every ellipsoid in
-// increasing order): index[k] is the ellipsoid (kNoEllipsoid for none), t[k] its root,
-// inside[k] whether the far root was taken.
+// The nearest hits of N rays (kPacket, or fewer lanes) with t > min_t, ray k from
+// (ox, oy, oz)[k] along (dx, dy, dz)[k], as the reference finds them
+// (BruteForce::closest(), every ellipsoid in increasing order): index[k] is the
+// ellipsoid (kNoEllipsoid for none), t[k] its root, inside[k] whether the far root was
+// taken.
 //
 // WHY: one culling pass over the bounding spheres for all rays
 // (SphereBounds::candidate_lanes()), and each ellipsoid some ray may hit intersected
@@ -39,7 +40,7 @@ void PacketTracer<Real>::nearest_hits(const Real* ox, const Real* oy, const Real
     // The ellipsoids that some ray may hit, in increasing order.
     const std::uint32_t* some_ray = scratch.candidates.data();
     const std::size_t count = bounds_.template candidate_lanes<N>(
-        ox, oy, oz, dx, dy, dz, lanes, scratch.candidates.data(), scratch.cull.data());
+        ox, oy, oz, dx, dy, dz, lanes, scratch.candidates.data(), scratch.cone_misses.data());
     min_t = visible_beyond(min_t);  // as in BruteForce::closest()
     Real best[N], found[N], far_root[N];
     for (int k = 0; k < N; ++k) best[k] = 0, found[k] = 0, far_root[k] = 0, index[k] = kNoEllipsoid;
@@ -129,8 +130,8 @@ void PacketTracer<Real>::hit_colours(std::uint32_t i, int count, const Real* ox,
                                      TraceScratch<Real>& scratch, V* colours) const {
     const SurfaceConstants<Real>& surface = surfaces_[i];
     const Ellipsoid<Real>& e = ellipsoids_[i];
-    const bool reflects = e.kr > 0 && reflections_left > 0;
-    if (surface.no_lighting && !reflects) {  // the colour is the ambient term
+    const bool mirror = reflects(e, reflections_left);
+    if (surface.no_lighting && !mirror) {  // the colour is the ambient term
         for (int k = 0; k < count; ++k) colours[k] = surface.ambient_term;
         return;
     }
@@ -166,7 +167,7 @@ void PacketTracer<Real>::hit_colours(std::uint32_t i, int count, const Real* ox,
             }
         }
     }
-    if (reflects) reflections(p, e.kr, reflections_left, scratch);
+    if (mirror) reflections(p, e.kr, reflections_left, scratch);
     for (int k = 0; k < count; ++k) colours[k] = {p.r[k], p.g[k], p.b[k]};
 }
 
@@ -241,11 +242,11 @@ std::uint64_t PacketTracer<Real>::lit_lanes(const HitPacket<Real, N>& p, LightLa
         }
         if (blocked == 0) return;
         waiting &= ~blocked;
-        scratch.blockers[li] = static_cast<std::uint32_t>(j);
+        scratch.blocker_hints[li] = static_cast<std::uint32_t>(j);
     };
     // The last blocker of this light first (neighbouring pixels share their shadows),
     // then the others in increasing order, until every lane is shadowed.
-    const std::uint32_t last = scratch.blockers[li];
+    const std::uint32_t last = scratch.blocker_hints[li];
     if (last != kNoEllipsoid && may_block.contains(last)) {
         try_ellipsoid(last);
         may_block.erase(last);

@@ -32,9 +32,9 @@ namespace rt {
 template <typename Real>
 struct TraceScratch {
     OwnLinesVector<std::uint32_t> candidates;
-    OwnLinesVector<typename SphereBounds<Real>::C> cull;  // per ellipsoid: culled when not 0
-    OwnLinesVector<std::uint32_t> blockers;  // per light, the last blocker; kNoEllipsoid before any
-    OwnLinesVector<std::uint32_t> lanes;     // per ellipsoid: the rays that may hit it
+    OwnLinesVector<typename SphereBounds<Real>::C> cone_misses;  // per ellipsoid: culled when not 0
+    OwnLinesVector<std::uint32_t> blocker_hints;  // per light, the last blocker; kNoEllipsoid before any
+    OwnLinesVector<std::uint32_t> lanes;          // per ellipsoid: the rays that may hit it
 };
 
 template <typename Real>
@@ -62,8 +62,8 @@ public:
         // grow with its pixels: 200 random ellipsoids with 10 lights, whole process,
         // medians of 15, took 7.35 ms in the tree against 7.77 flat at 150x150, 5.5
         // against 6.7 at 100x100, and the same at 200x200). Where no eye ray can hit
-        // anything there is no shadow ray at all, and nothing to build (0.04 ms of
-        // testBehind's 1.8 ms run). The light cones that cull the candidates are exact
+        // anything there is no shadow ray at all, and the light cones are not built (0.04
+        // ms of testBehind's 1.8 ms run). The light cones that cull the candidates are exact
         // only where rounding stays far below the spheres' inflation
         // (everything_guarded()); elsewhere each packet tries every ellipsoid on every
         // lane, with the prefilter and intersect(), exact at any distance but slow past
@@ -76,6 +76,8 @@ public:
         const double pixels = double(scene.columns) * double(scene.rows);
         const double n = double(ellipsoids_.size());
         const bool guarded = everything_guarded();
+        // (WideSet::kCapacity: always within takes_the_tree()'s range; the tests call
+        // this tracer for larger scenes too.)
         can_render_ = !any_seen_ || (pixels >= n * n && ellipsoids_.size() <= WideSet::kCapacity &&
                                      (guarded || ellipsoids_.size() <= kUnculledEllipsoids));
         culling_tables_ = any_seen_ && can_render_ && guarded;
@@ -100,8 +102,8 @@ public:
     TraceScratch<Real> make_scratch() const {
         TraceScratch<Real> s;
         s.candidates.resize(ellipsoids_.size());
-        s.cull.resize(ellipsoids_.size());
-        s.blockers.assign(lights_.size(), kNoEllipsoid);
+        s.cone_misses.resize(ellipsoids_.size());
+        s.blocker_hints.assign(lights_.size(), kNoEllipsoid);
         s.lanes.resize(ellipsoids_.size());
         return s;
     }
@@ -116,12 +118,9 @@ public:
     // root); its three bytes go to out[k], those the reference gives the pixel
     // (Whitted::pixel(), whitted.h).
     //
-    // WHY: neighbouring pixels mostly see the same ellipsoid, and all of the shading
-    // arithmetic but the shadow rays is then the same chain of operations per pixel, run
-    // here with the pixels as the lanes of vector instructions (hit_packet.h). Every lane
-    // does the operations of the reference's shading (shading.h) in its order, and a
-    // term that it skips is not added (a select, not an addition of zero), so the bytes
-    // are the same.
+    // Why in packets: hit_packet.h. Every lane does the operations of the reference's
+    // shading (shading.h) in its order, and a term that it skips is not added (a select,
+    // not an addition of zero), so the bytes are the same.
     static constexpr int kPacket = rt::kPacket;
     void eye_hit_pixels(std::uint32_t i, int count, const Real* dx, const Real* dy, const Real* dz,
                         const Real* t, const bool* inside, TraceScratch<Real>& scratch,
@@ -168,7 +167,7 @@ private:
     // of everything a ray can start from or go to: the ellipsoids' spheres, the lights
     // and the camera. Packet shadows are exact only then.
     bool everything_guarded() const {
-        Vec3<C> lo{}, hi{};
+        Vec3<C> lo{}, hi{};  // from the camera, at the origin
         auto grow = [&](C x, C y, C z, C r) {
             lo = {std::min(lo.x, x - r), std::min(lo.y, y - r), std::min(lo.z, z - r)};
             hi = {std::max(hi.x, x + r), std::max(hi.y, y + r), std::max(hi.z, z + r)};

@@ -12,8 +12,8 @@
 // that sphere spans the directions within beta = asin(R / |w|) of w = c - o; the
 // directions lie within s of the axis a; so no ray meets it when the angle between a and
 // w exceeds beta + s, i.e. when a.w < |w| cos(beta + s) = sqrt(|w|^2 - R^2) cos s - R sin s
-// (the cone-sphere test of C. Ericson, Real-Time Collision Detection, 2005, section
-// 4.6, here without square root or division: squared where both sides are positive).
+// (a cone-sphere test, here without square root or division: squared where both sides
+// are positive; LightCones::packet() makes one of the same kind, its apex at a light).
 //
 // Rounding: the spheres are SphereBounds's, inflated far beyond intersect()'s rounding;
 // this test only has to be conservative in exact arithmetic for them. Its own errors

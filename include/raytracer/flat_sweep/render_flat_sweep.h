@@ -55,8 +55,8 @@ inline constexpr bool kFlatSweepPrecision = std::is_same_v<AtLeastDouble<Real>, 
 
 // The image through the flat sweep, or false with nothing rendered where it declines: a
 // precision it does not render in, or a scene where its packets would not pay
-// (PacketTracer::can_render()). Instantiated for float, double and long double; threads
-// = 0: see render_to().
+// (PacketTracer::can_render()). Instantiated for double in raytracer.exe, for float and
+// long double in raytracer_precisions (render.cpp); threads = 0: see render_to().
 template <typename Real>
 bool render_flat_sweep_to(const Scene& scene, RowSink& sink, unsigned threads);
 

@@ -32,16 +32,16 @@ struct PixelRect {
     int first_column, last_column, first_row, last_row;  // inclusive; empty when first > last
 };
 
-// spheres[i] bounds ellipsoid i; usable[i] says whether the rounding argument holds for
-// rays from the eye (else the whole screen is kept).
+// spheres[i] bounds ellipsoid i; culls_eye_rays[i] says whether the rounding argument
+// holds for rays from the eye (else the whole screen is kept).
 template <typename C>
 std::vector<PixelRect> screen_bounds(const Scene& scene, const std::vector<BoundingSphere<C>>& spheres,
-                                     const std::vector<bool>& usable) {
+                                     const std::vector<bool>& culls_eye_rays) {
     const PixelRect whole{0, scene.columns - 1, 0, scene.rows - 1};
     std::vector<PixelRect> rects;
     for (std::size_t i = 0; i < spheres.size(); ++i) {
         const BoundingSphere<C>& s = spheres[i];
-        if (!usable[i]) {
+        if (!culls_eye_rays[i]) {
             rects.push_back(whole);
             continue;
         }
@@ -93,15 +93,16 @@ std::vector<PixelRect> screen_bounds(const Scene& scene, const std::vector<Bound
 // Tighter than the rectangle: within one row, the columns whose eye rays may meet an
 // ellipsoid: its silhouette's span of the row (silhouette.h), two columns of margin on
 // each side, as for the rectangle. Only for an ellipsoid whose guard holds the camera
-// (usable); otherwise the rectangle's columns stand.
+// (culls_eye_rays); otherwise the rectangle's columns stand.
 template <typename C>
 class RowSpans {
 public:
     RowSpans() = default;
 
     template <typename Real>
-    RowSpans(const Scene& scene, const std::vector<Ellipsoid<Real>>& ellipsoids, std::vector<bool> usable)
-        : usable_(std::move(usable)),
+    RowSpans(const Scene& scene, const std::vector<Ellipsoid<Real>>& ellipsoids,
+             std::vector<bool> culls_eye_rays)
+        : culls_eye_rays_(std::move(culls_eye_rays)),
           left_(C(scene.left)),
           column_scale_(C(scene.columns) / (C(scene.right) - C(scene.left))),
           columns_(scene.columns) {
@@ -112,7 +113,7 @@ public:
     // ellipsoid i; false when none may.
     bool narrow(std::size_t i, C y, int& first, int& last) const {
         C u_lo, u_hi;
-        if (!usable_[i]) return first <= last;
+        if (!culls_eye_rays_[i]) return first <= last;
         if (!silhouettes_[i].row_span(y, u_lo, u_hi)) return false;
         const C c_lo = (silhouettes_[i].x_of(u_lo) - left_) * column_scale_;
         const C c_hi = (silhouettes_[i].x_of(u_hi) - left_) * column_scale_;
@@ -126,7 +127,7 @@ public:
 
 private:
     std::vector<Silhouette<C>> silhouettes_;
-    std::vector<bool> usable_;
+    std::vector<bool> culls_eye_rays_;
     C left_ = 0, column_scale_ = 1;
     int columns_ = 0;
 };

@@ -1,18 +1,17 @@
 // Conservative culling of ray/ellipsoid tests by bounding spheres, so that the exact
 // intersect() runs only where it could report a hit.
 //
-// WHY: intersect() costs four divisions and a square root per ray and ellipsoid; a ray
+// WHY: intersect() costs seven divisions and a square root per ray and ellipsoid; a ray
 // that clearly misses a slightly inflated bounding sphere (or has it wholly behind its
 // origin) is rejected here with a few multiplications and no division. The sphere of an
 // ellipsoid is centred on it with radius max|s| (1 + kCullingGap); it contains the
 // ellipsoid with a gap of at least kCullingGap in the unit sphere's space, far more than
-// the rounding of intersect() (a few ulps, plus its tangent bound, unit_sphere_roots.h:
-// at most about 110 eps (1 + |o'|), 2.4e-8 within the reach below: exact_culling.h). So
-// every culled test is one that intersect() would have answered "no usable root", and
-// images stay bit-identical. Where the ray's origin is so far from an ellipsoid,
-// relative to its smallest scale, that rounding could approach that gap, nothing is
-// culled. Measured on tests/bench/heavy.txt (15 ellipsoids, 10 lights), single thread:
-// see docs/speed.md.
+// the rounding of intersect() (a few ulps, plus its tangent bound: at most about
+// 110 eps (1 + |o'|), 2.4e-8 within the reach below; exact_culling.h states it, bvh.h
+// derives it). So every culled test is one that intersect() would have answered "no
+// usable root", and images stay bit-identical. Where the ray's origin is so far from an
+// ellipsoid, relative to its smallest scale, that rounding could approach that gap,
+// nothing is culled.
 //
 // The arrays are a structure of arrays, so that the per-ray loop over all ellipsoids
 // vectorises (GCC -O2/-O3: packed multiplies and compares, no gathers).
@@ -95,21 +94,21 @@ public:
     // rays instead of one per ray), after the spheres that no ray can meet are ruled out
     // for the whole packet (RayCone: such a sphere's ellipsoid gives no ray a root, by
     // the inflation argument above, so the nearest hits stay the same). lanes, listed,
-    // scratch: size() entries.
+    // cone_misses (per sphere, not 0 where the cone misses it): size() entries.
     template <int N>
     std::size_t candidate_lanes(const Real* ox, const Real* oy, const Real* oz, const Real* dx,
                                 const Real* dy, const Real* dz, std::uint32_t* lanes, std::uint32_t* listed,
-                                C* scratch) const {
+                                C* cone_misses) const {
         static_assert(N <= 32, "one bit per lane");
         const std::size_t n = size();
         std::size_t kept = 0;  // the spheres some ray may meet, in listed
         const RayCone<C> cone = RayCone<C>::template of<N>(ox, oy, oz, dx, dy, dz);
         if (cone.usable) {
             for (std::size_t i = 0; i < n; ++i)
-                scratch[i] = cone.misses(cx_[i], cy_[i], cz_[i], radius_[i], guard2_[i]);
+                cone_misses[i] = cone.misses(cx_[i], cy_[i], cz_[i], radius_[i], guard2_[i]);
             for (std::size_t i = 0; i < n; ++i) {
                 listed[kept] = static_cast<std::uint32_t>(i);
-                kept += scratch[i] == 0;
+                kept += cone_misses[i] == 0;
             }
         } else {
             for (std::size_t i = 0; i < n; ++i) listed[i] = static_cast<std::uint32_t>(i);
