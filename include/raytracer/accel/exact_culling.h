@@ -10,6 +10,7 @@
 
 #include "raytracer/compiler.h"
 #include "raytracer/lanes.h"
+#include "raytracer/reference/ellipsoid.h"
 #include "raytracer/vec3.h"
 
 namespace rt {
@@ -67,12 +68,11 @@ MaskOf<T> leaves_own_ellipsoid(const T& scaled_length, const T& distance, const 
 }
 
 // |c| of leaves_own_ellipsoid() at a point on the ellipsoid of this centre and scale, as
-// mapped_origin() computes c. For one ray or lanes.
+// intersect() computes c (mapped_point()). For one ray or lanes.
 template <typename T>
 RT_ALWAYS_INLINE T own_abs_c(const Vec3<T>& point, const Vec3<T>& centre, const Vec3<T>& scale) {
     using std::abs;
-    const Vec3<T> mapped = (point - centre) / scale;
-    return abs(dot(mapped, mapped) - T(1));
+    return abs(mapped_point(point, centre, scale).c);
 }
 
 }  // namespace rt

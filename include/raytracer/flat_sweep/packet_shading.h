@@ -52,8 +52,9 @@ void PacketTracer<Real>::nearest_hits(const Real* ox, const Real* oy, const Real
         RT_VECTOR_LOOP
         for (int k = 0; k < N; ++k) listed[k] = (set & kLaneBits<N>.bit[k]) != 0 ? Real(1) : Real(0);
         // visible_root(): inside = !(near > min_t); t = inside ? far : near; taken when
-        // t > min_t and nothing nearer was found. (Products of 0/1 masks rather than
-        // && and bools, which keep GCC's loop scalar.)
+        // t > min_t and nothing nearer was found. (Products of 0/1 masks: with bools and
+        // && GCC 12 vectorises the loop too, but the heavy scene took 77.5 against 76.9
+        // ms, one thread, medians of 31.)
         RT_VECTOR_LOOP
         for (int k = 0; k < N; ++k) {
             const Real beyond = near[k] > min_t ? Real(1) : Real(0);

@@ -5,6 +5,7 @@
 
 #include <vector>
 
+#include "raytracer/compiler.h"
 #include "raytracer/reference/unit_sphere_roots.h"
 #include "raytracer/scene.h"
 #include "raytracer/vec3.h"
@@ -57,10 +58,17 @@ struct MappedOrigin {
     Real c;        // o'.o' - 1 (infinite where it overflows; unit_sphere_roots() copes)
 };
 
+// A point mapped into the unit space of the ellipsoid of this centre and scale, for one
+// ray or lanes (T = Lanes: exact_culling.h's own_abs_c()).
+template <typename T>
+RT_ALWAYS_INLINE MappedOrigin<T> mapped_point(const Vec3<T>& point, const Vec3<T>& centre, const Vec3<T>& scale) {
+    const Vec3<T> o = (point - centre) / scale;
+    return {o, dot(o, o) - T(1)};
+}
+
 template <typename Real>
 MappedOrigin<Real> mapped_origin(const Ellipsoid<Real>& e, const Vec3<Real>& origin) {
-    const Vec3<Real> o = (origin - e.centre) / e.scale;
-    return {o, dot(o, o) - Real(1)};
+    return mapped_point(origin, e.centre, e.scale);
 }
 
 template <typename Real>
