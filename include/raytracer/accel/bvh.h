@@ -188,10 +188,7 @@ public:
     // blocks. The bundle goes down the tree as one slab ray and its lanes are tried one by one in the leaves
     // it reaches: one descent instead of one a ray, where the points lie close (a tile's points on one
     // ellipsoid). The ellipsoids in cleared are not tried for their lanes. The bundle's edges converge on
-    // the light: point + t (light - point) is (1 - t) point + t light, so for 0 <= t <= 1 each coordinate
-    // lies between o_lo + t (light - o_lo) and o_hi + t (light - o_hi), widened by the rounding of to_light
-    // and of those differences (a few ulps of |light| + |point|): bounds true on their own, though the boxes'
-    // gaps (exact_culling.h) hold that rounding over a thousand times, so no image changes without it.
+    // the light (shadow_bundle_edges(), slab_rays.h).
     template <int N>
     unsigned occluded(const V (&points)[N], const V& light, unsigned lanes, std::uint32_t& blocker,
                       const ClearedLanes& cleared = {}) const {
@@ -203,13 +200,7 @@ public:
         V to_light[N];
         for (unsigned m = lanes; m != 0; m &= m - 1) to_light[lowest_bit(m)] = light - points[lowest_bit(m)];
         C o_lo[3], o_hi[3], d_lo[3], d_hi[3];
-        bounds_of(points, lanes, o_lo, o_hi);
-        const C to[3] = {C(light.x), C(light.y), C(light.z)};
-        for (int a = 0; a < 3; ++a) {
-            const C slack = 4 * C(scene_epsilon<Real>()) *
-                            (std::abs(to[a]) + std::max(std::abs(o_lo[a]), std::abs(o_hi[a])));
-            d_lo[a] = (to[a] - o_lo[a]) - slack, d_hi[a] = (to[a] - o_hi[a]) + slack;
-        }
+        shadow_bundle_edges(points, light, lanes, o_lo, o_hi, d_lo, d_hi);
         unsigned blocked = 0;
         SlabRay<C> ray;
         if (ellipsoids_.empty() || !make_slab_ray(o_lo, o_hi, d_lo, d_hi, least_direction_, ray) ||
@@ -221,9 +212,8 @@ public:
             return blocked;
         }
         // An ellipsoid's box is tried against the bundle, then against each lane's own ray, whose set-up
-        // waits for the first box the bundle meets (the heavy scene through the tree 332 -> 306 ms); in
-        // double or wider the prefilter (shadow_prefilter.h, no division) decides most of the lanes met,
-        // and intersect() the others. The hint for all lanes at once first.
+        // waits for the first box the bundle meets (the heavy scene through the tree 332 -> 306 ms); the
+        // lanes met go to blocked_lanes() (shadow_prefilter.h). The hint for all lanes at once first.
         LaneRays<Real, N> rays;  // NOLINT(cppcoreguidelines-pro-type-member-init): set() before use
         bool rays_set = false;
         const std::uint32_t tried = blocker;
@@ -233,24 +223,12 @@ public:
             const BuildBox<C> box = inflated_box<C>(ellipsoids_[i], gaps_);
             if (open == 0 || !meets_box(ray, box, C(1))) return;
             if (!rays_set) rays.set(points, to_light, lanes, 1), rays_set = true;
-            unsigned met = open & rays.meeting(box);
+            const unsigned met = open & rays.meeting(box);
             if (met == 0) return;
-            if constexpr (std::numeric_limits<Real>::digits >= std::numeric_limits<double>::digits) {
-                const PrefilterAnswer answer =
-                    prefilter_shadow_lanes<N>(ellipsoids_[i], rays.from[0], rays.from[1], rays.from[2],
-                                              rays.along[0], rays.along[1], rays.along[2]);
-                const auto yes = static_cast<unsigned>(answer.blocked) & met;
-                if (yes != 0) blocked |= yes, blocker = i;
-                met &= static_cast<unsigned>(answer.unsure);
-                if (met == 0) return;
-            }
-            Real hit[N], near[N], far[N];
-            intersect_lanes<N>(ellipsoids_[i], rays.from[0], rays.from[1], rays.from[2], rays.along[0],
-                               rays.along[1], rays.along[2], hit, near, far);
-            for (; met != 0; met &= met - 1) {
-                const int k = lowest_bit(met);
-                if (blocks_segment(Roots<Real>{hit[k], near[k], far[k]})) blocked |= 1U << k, blocker = i;
-            }
+            const auto yes = static_cast<unsigned>(blocked_lanes<N>(ellipsoids_[i], rays.from[0],
+                                                                    rays.from[1], rays.from[2], rays.along[0],
+                                                                    rays.along[1], rays.along[2], met));
+            if (yes != 0) blocked |= yes, blocker = i;
         };
         if (tried < ellipsoids_.size()) try_ellipsoid(tried, lanes);
         unsigned open = lanes & ~blocked;

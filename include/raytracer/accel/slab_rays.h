@@ -357,4 +357,25 @@ RT_ALWAYS_INLINE void bounds_of(const Vec3<Real> (&v)[N], unsigned lanes, C (&lo
     lo[0] = x_lo, lo[1] = y_lo, lo[2] = z_lo, hi[0] = x_hi, hi[1] = y_hi, hi[2] = z_hi;
 }
 
+// The edges of a bundle of shadow rays from points[k] (k in lanes) to one light, for
+// make_slab_ray(): per axis, origins within [o_lo, o_hi] and directions within [d_lo,
+// d_hi]. The edges converge on the light: point + t (light - point) is
+// (1 - t) point + t light, so for 0 <= t <= 1 each coordinate lies between
+// o_lo + t (light - o_lo) and o_hi + t (light - o_hi), widened by the rounding of
+// to_light and of those differences (a few ulps of |light| + |point|): bounds true on
+// their own, though the boxes' gaps (exact_culling.h) hold that rounding over a
+// thousand times, so no image changes without it.
+template <typename C, typename Real, int N>
+RT_ALWAYS_INLINE void shadow_bundle_edges(const Vec3<Real> (&points)[N], const Vec3<Real>& light,
+                                          unsigned lanes, C (&o_lo)[3], C (&o_hi)[3], C (&d_lo)[3],
+                                          C (&d_hi)[3]) {
+    bounds_of(points, lanes, o_lo, o_hi);
+    const C to[3] = {C(light.x), C(light.y), C(light.z)};
+    for (int a = 0; a < 3; ++a) {
+        const C slack =
+            4 * C(scene_epsilon<Real>()) * (std::abs(to[a]) + std::max(std::abs(o_lo[a]), std::abs(o_hi[a])));
+        d_lo[a] = (to[a] - o_lo[a]) - slack, d_hi[a] = (to[a] - o_hi[a]) + slack;
+    }
+}
+
 }  // namespace rt

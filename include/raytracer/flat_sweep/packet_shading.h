@@ -175,17 +175,15 @@ void PacketTracer<Real>::hit_colours(std::uint32_t i, int count, const Real* ox,
 // The lanes of a packet with light li in front (l.front) that the light reaches, their
 // shadow rays tested together: sets l.lit to them and returns them.
 //
-// WHY: each candidate ellipsoid is tried on all lanes at once with prefilter_shadow_lanes()
-// (vector instructions), and intersect() runs only for the rare lanes it is unsure
-// about. A lane is shadowed when SOME ellipsoid blocks its segment, and each test gives
-// intersect()'s exact answer, so the order of the tries does not matter; a lane is left
-// untried only for ellipsoids that cannot block it (outside its segment's cone,
-// LightCones::lanes(), or ruled out for the whole packet, below; the self ellipsoid
-// where self_clear; those that enclose light and point), so each lane gets the
-// unculled renderer's boolean: the same bytes.
-// may_block: the ellipsoids that can block some lane at all (LightCones::packet() for
-// the packet's ball; all of them without culling_tables_), in a set of Set's width.
-// self_within: the lanes whose points Enclosures::points_within() ellipsoid self.
+// WHY: each candidate ellipsoid is tried on all lanes at once with blocked_lanes()
+// (shadow_prefilter.h: the prefilter in vector instructions, and intersect() only for
+// the rare lanes it is unsure about). A lane is shadowed when SOME ellipsoid blocks its segment, and each
+// test gives intersect()'s exact answer, so the order of the tries does not matter; a lane is left untried
+// only for ellipsoids that cannot block it (outside its segment's cone, LightCones::lanes(), or ruled out for
+// the whole packet, below; the self ellipsoid where self_clear; those that enclose light and point), so each
+// lane gets the unculled renderer's boolean: the same bytes. may_block: the ellipsoids that can block some
+// lane at all (LightCones::packet() for the packet's ball; all of them without culling_tables_), in a set of
+// Set's width. self_within: the lanes whose points Enclosures::points_within() ellipsoid self.
 template <typename Real>
 template <int N, typename Set>
 std::uint64_t PacketTracer<Real>::lit_lanes(const HitPacket<Real, N>& p, LightLanes<Real, N>& l,
@@ -233,14 +231,7 @@ std::uint64_t PacketTracer<Real>::lit_lanes(const HitPacket<Real, N>& p, LightLa
         else if (lanes != 0)
             lanes &= ~enclosures_.template contains_segments<N>(p.px, p.py, p.pz, li, j, kLane);
         if (lanes == 0) return;
-        const PrefilterAnswer answer =
-            prefilter_shadow_lanes<N>(ellipsoids_[j], p.px, p.py, p.pz, l.tx, l.ty, l.tz);
-        Bits blocked = answer.blocked & lanes, unsure = answer.unsure & lanes;
-        for (; unsure != 0; unsure &= unsure - 1) {  // rare: intersect() decides
-            const int k = lowest_bit(unsure);
-            if (blocks_segment(ellipsoids_[j], V{p.px[k], p.py[k], p.pz[k]}, V{l.tx[k], l.ty[k], l.tz[k]}))
-                blocked |= kLane[k];
-        }
+        const Bits blocked = blocked_lanes<N>(ellipsoids_[j], p.px, p.py, p.pz, l.tx, l.ty, l.tz, lanes);
         if (blocked == 0) return;
         waiting &= ~blocked;
         scratch.blocker_hints[li] = static_cast<std::uint32_t>(j);
