@@ -1,9 +1,9 @@
 // The shadow tests of a packet's lanes at once (PacketTracer::lit_lanes()):
 // prefilter_shadow_lanes() must never answer blocked or clear against
-// intersect()'s answer, and Enclosures::contains_segments() must give every lane
-// contains_segment()'s, for random rays and for rays built to lie at the prefilter's
-// margins (roots near 0.001 and 1 give or take 1e-4, near-tangent lines, |o'|^2 near 1e4,
-// |d'|^2 near 1e-4), where rounding would show.
+// intersect()'s answer, blocked_lanes() must give each lane blocks_segment()'s, and
+// Enclosures::contains_segments() must give every lane contains_segment()'s, for random rays and for rays
+// built to lie at the prefilter's margins (roots near 0.001 and 1 give or take 1e-4, near-tangent lines,
+// |o'|^2 near 1e4, |d'|^2 near 1e-4), where rounding would show.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -150,4 +150,43 @@ TEST(lane_enclosures_answer_as_the_scalar_test) {
     }
     CHECK(differing == 0);
     CHECK(contained > 1000);
+}
+
+// blocked_lanes(), the shadow decision both fast paths make for a set of lanes, gives
+// each lane of the set blocks_segment()'s answer and no lane outside it: in double
+// (the prefilter, then intersect() for the lanes it leaves) and in float (intersect()
+// for every lane, in one vector loop).
+template <typename Real>
+void check_blocked_lanes(std::uint32_t seed) {
+    std::mt19937 g(seed);
+    const std::vector<rt::Ellipsoid<double>> ellipsoids = random_ellipsoids(g, 12);
+    long long differing = 0, blocked = 0, open = 0;
+    for (int round = 0; round < 20000; ++round) {
+        const std::size_t i = g() % ellipsoids.size();
+        rt::SphereSpec spec{};
+        spec.centre = ellipsoids[i].centre, spec.scale = ellipsoids[i].scale;
+        const rt::Ellipsoid<Real> e = rt::make_ellipsoid<Real>(spec);
+        Real px[N], py[N], pz[N], tx[N], ty[N], tz[N];
+        const rt::LaneBits lanes = g() & ((rt::LaneBits(1) << N) - 1);
+        rt::LaneBits expected = 0;
+        for (int k = 0; k < N; ++k) {
+            const Ray r = random_ray(g, ellipsoids[i]);
+            px[k] = Real(r.point.x), py[k] = Real(r.point.y), pz[k] = Real(r.point.z);
+            tx[k] = Real(r.to_light.x), ty[k] = Real(r.to_light.y), tz[k] = Real(r.to_light.z);
+            const bool blocks = rt::blocks_segment(e, rt::Vec3<Real>{px[k], py[k], pz[k]},
+                                                   rt::Vec3<Real>{tx[k], ty[k], tz[k]});
+            if ((lanes >> k & 1U) == 0) continue;
+            (blocks ? blocked : open) += 1;
+            expected |= blocks ? rt::LaneBits(1) << k : 0;
+        }
+        differing += rt::blocked_lanes<N>(e, px, py, pz, tx, ty, tz, lanes) != expected;
+    }
+    CHECK(differing == 0);
+    CHECK(blocked > 1000);
+    CHECK(open > 1000);
+}
+
+TEST(blocked_lanes_answer_as_each_lane_alone) {
+    check_blocked_lanes<double>(31);
+    check_blocked_lanes<float>(32);
 }
