@@ -61,7 +61,8 @@ struct MappedOrigin {
 // A point mapped into the unit space of the ellipsoid of this centre and scale, for one
 // ray or lanes (T = Lanes: exact_culling.h's own_abs_c()).
 template <typename T>
-RT_ALWAYS_INLINE MappedOrigin<T> mapped_point(const Vec3<T>& point, const Vec3<T>& centre, const Vec3<T>& scale) {
+RT_ALWAYS_INLINE MappedOrigin<T> mapped_point(const Vec3<T>& point, const Vec3<T>& centre,
+                                              const Vec3<T>& scale) {
     const Vec3<T> o = (point - centre) / scale;
     return {o, dot(o, o) - T(1)};
 }
