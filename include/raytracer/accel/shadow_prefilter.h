@@ -51,6 +51,7 @@ PrefilterAnswer prefilter_shadow_lanes(const Ellipsoid<Real>& e, const Real* px,
     const Vec3<Real> centre = e.centre,
                      inverse{Real(1) / e.scale.x, Real(1) / e.scale.y, Real(1) / e.scale.z};
     const Real lo = Real(kShadowRayMinT), margin = Real(1e-4);
+    RT_VECTOR_LOOP
     for (int k = 0; k < N; ++k) {
         const Real ox = (px[k] - centre.x) * inverse.x, oy = (py[k] - centre.y) * inverse.y,
                    oz = (pz[k] - centre.z) * inverse.z;

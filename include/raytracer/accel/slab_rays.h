@@ -40,8 +40,9 @@ struct SlabRay {
     C hi_from[3], hi_inv[3];  // for its high planes: o_lo, 1 / d_lo
 };
 
-// Whether a direction's component d has an inverse that is not finite though d is not 0:
-// a subnormal, whose infinite inverse makes a slab's t infinite where it is finite.
+// Whether a direction's component d has no finite inverse though it is not 0: too small
+// for one (a subnormal below about 5.6e-309 in double), or NaN. An infinite inverse
+// makes a slab's t infinite where it is finite.
 template <typename C>
 RT_ALWAYS_INLINE bool unbounded_inverse(C d, C inv) {
     return d != 0 && !(std::abs(inv) <= std::numeric_limits<C>::max());
@@ -104,9 +105,9 @@ RT_ALWAYS_INLINE bool meets_box(const SlabRay<C>& ray, const BuildBox<C>& box, C
 }
 
 // Whether a ray from within the box [o_lo, o_hi] is within every guard distance of the
-// ellipsoids in bounds, the least of which is guard (nearly every ray: the scene is far
-// smaller than the 2e10 smallest scales of BoxGaps::guard()), so that no node needs its
-// guards checked.
+// ellipsoids in bounds, the least of which is guard (nearly every ray in double: the
+// scene is far smaller than the 1e10 smallest scales of BoxGaps::guard()), so that no
+// node needs its guards checked.
 template <typename C>
 bool within_guard(const BuildBox<C>& bounds, C guard, const C (&o_lo)[3], const C (&o_hi)[3]) {
     C farthest = 0;

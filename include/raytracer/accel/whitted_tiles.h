@@ -11,7 +11,7 @@
 //          can meet a box (Bvh::may_meet());
 //   block  kBlockColumns columns of a span, whose eye rays descend the tree together
 //          (EyeBlock);
-//   tile   Rows x Columns pixels of a block, shaded together as kLanes lanes;
+//   tile   Rows x Columns pixels of a block, shaded together as N lanes;
 //   chunk  kChunk lanes of a tile, one vector register (kRegisterLanes).
 #pragma once
 
