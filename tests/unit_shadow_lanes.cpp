@@ -1,9 +1,10 @@
 // The shadow tests of a packet's lanes at once (PacketTracer::lit_lanes()):
-// prefilter_shadow_lanes() must never answer blocked or clear against
-// intersect()'s answer, blocked_lanes() must give each lane blocks_segment()'s, and
-// Enclosures::contains_segments() must give every lane contains_segment()'s, for random rays and for rays
-// built to lie at the prefilter's margins (roots near 0.001 and 1 give or take 1e-4, near-tangent lines,
-// |o'|^2 near 1e4, |d'|^2 near 1e-4), where rounding would show.
+// prefilter_shadow_lanes() must never answer blocked or clear against intersect()'s
+// answer, blocked_lanes() must give each lane blocks_segment()'s, and
+// Enclosures::contains_segments() must give every lane contains_segment()'s, for random
+// rays and for rays built to lie at the prefilter's margins (roots near 0.001 and 1
+// give or take 1e-4, near-tangent lines, |o'|^2 near 1e4, |d'|^2 near 1e-4), where
+// rounding would show.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>

@@ -177,13 +177,15 @@ void PacketTracer<Real>::hit_colours(std::uint32_t i, int count, const Real* ox,
 //
 // WHY: each candidate ellipsoid is tried on all lanes at once with blocked_lanes()
 // (shadow_prefilter.h: the prefilter in vector instructions, and intersect() only for
-// the rare lanes it is unsure about). A lane is shadowed when SOME ellipsoid blocks its segment, and each
-// test gives intersect()'s exact answer, so the order of the tries does not matter; a lane is left untried
-// only for ellipsoids that cannot block it (outside its segment's cone, LightCones::lanes(), or ruled out for
-// the whole packet, below; the self ellipsoid where self_clear; those that enclose light and point), so each
-// lane gets the unculled renderer's boolean: the same bytes. may_block: the ellipsoids that can block some
-// lane at all (LightCones::packet() for the packet's ball; all of them without culling_tables_), in a set of
-// Set's width. self_within: the lanes whose points Enclosures::points_within() ellipsoid self.
+// the rare lanes it is unsure about). A lane is shadowed when SOME ellipsoid blocks its
+// segment, and each test gives intersect()'s exact answer, so the order of the tries
+// does not matter; a lane is left untried only for ellipsoids that cannot block it
+// (outside its segment's cone, LightCones::lanes(), or ruled out for the whole packet,
+// below; the self ellipsoid where self_clear; those that enclose light and point), so
+// each lane gets the unculled renderer's boolean: the same bytes.
+// may_block: the ellipsoids that can block some lane at all (LightCones::packet() for
+// the packet's ball; all of them without culling_tables_), in a set of Set's width.
+// self_within: the lanes whose points Enclosures::points_within() ellipsoid self.
 template <typename Real>
 template <int N, typename Set>
 std::uint64_t PacketTracer<Real>::lit_lanes(const HitPacket<Real, N>& p, LightLanes<Real, N>& l,
