@@ -25,8 +25,8 @@ namespace {
 // unlinkat (_wunlink on Windows), write and _exit (end_on_signal(): signal, raise and
 // pause; on Windows, signal() to stay installed), which are async-signal-safe. A name
 // is copied into cleanup_path before cleanup_set is raised, so a handler never sees
-// half a name: the flags are lock-free atomics, stored with release and loaded with
-// acquire, as a handler may run on another thread than the one that sets them (on
+// half a name: the flags are lock-free atomics, stored with release (or stronger) and
+// loaded with acquire, as a handler may run on another thread than the one that sets them (on
 // Windows a thread of its own; elsewhere the main thread, or a helper for the ending
 // signals), where a fence for signals alone would not order the name before the flag.
 static_assert(std::atomic<int>::is_always_lock_free, "a signal handler may use only lock-free atomics");
@@ -63,10 +63,17 @@ std::atomic<int> output_is_stream{0};
 enum Phase : int { kRunning, kHeld, kInterrupted };
 std::atomic<int> phase{kRunning};
 #ifndef _WIN32
+// An ending signal that came while a named temporary was being put in place: the run
+// ends by it once no named temporary is left (clear_interrupt_cleanup()). It and
+// cleanup_set are stored and then the other loaded, all sequentially consistent, so at
+// least one side sees the other's store: the signal is never lost, and never acted on
+// while a temporary would stay.
+std::atomic<int> deferred_signal{0};
 constexpr int kInterruptSignals[] = {SIGINT, SIGTERM, SIGHUP};
 // The other signals that end a process by default (Ctrl-\, a reader of stderr gone,
 // timers, the user's): they keep their default action and exit status (SIGQUIT's core,
-// SIGPIPE's silent 141), but the named temporary is removed first.
+// SIGPIPE's silent 141), but the named temporary is removed first, or, while the image
+// is being put in place, the run ends once it is.
 constexpr int kEndingSignals[] = {SIGQUIT, SIGPIPE, SIGALRM, SIGUSR1, SIGUSR2, SIGVTALRM, SIGPROF, SIGXCPU};
 #endif
 
@@ -116,15 +123,30 @@ extern "C" void render_on_interrupt(int signal_number) {
 }
 
 #ifndef _WIN32
+void end_by(int signal_number) {
+    (void)std::signal(signal_number, SIG_DFL);
+    (void)std::raise(signal_number);  // in a handler, blocked: it ends the process once that returns
+}
+
 extern "C" void end_on_signal(int signal_number) {
-    int running = kRunning;  // not once the image is being put in place
+    int running = kRunning;
     if (phase.compare_exchange_strong(running, kInterrupted)) {
         remove_cleanup_file();
     } else if (running == kInterrupted) {
         for (;;) pause();  // another handler is ending the run, its temporary first
+    } else {
+        // The image is being put in place. Its temporary, if named, is not removed (the
+        // rename may be done, or next), and the process may not end and leave it: the
+        // run ends by this signal once the temporary is gone.
+        deferred_signal.store(signal_number);
+        if (cleanup_set.load() != 0) return;
     }
-    (void)std::signal(signal_number, SIG_DFL);
-    (void)std::raise(signal_number);  // blocked in here: it ends the process once this returns
+    end_by(signal_number);
+}
+
+// Ends the run by a signal that waited for the named temporary (end_on_signal()).
+void end_by_deferred_signal() {
+    if (const int signal_number = deferred_signal.load(); signal_number != 0) end_by(signal_number);
 }
 #endif
 
@@ -157,6 +179,7 @@ void install_interrupt_handlers() {
     // before main() (a profiler's SIGPROF, say), is left as it is.
     struct sigaction ending {};
     ending.sa_handler = end_on_signal;
+    ending.sa_flags = SA_RESTART;  // it returns while the image is put in place: no EINTR
     ending.sa_mask = handled;
     for (const int s : kEndingSignals) {
         struct sigaction before {};
@@ -186,7 +209,12 @@ void release_interrupts() {
     (void)phase.compare_exchange_strong(held, kRunning);
 }
 
-void clear_interrupt_cleanup() { cleanup_set.store(0, std::memory_order_release); }
+void clear_interrupt_cleanup() {
+    cleanup_set.store(0);
+#ifndef _WIN32
+    end_by_deferred_signal();
+#endif
+}
 
 #ifndef _WIN32
 bool set_interrupt_cleanup(int folder, const char* name) {
@@ -195,7 +223,12 @@ bool set_interrupt_cleanup(int folder, const char* name) {
     if (length >= kMaxPath) return false;
     std::memcpy(cleanup_path, name, length + 1);
     cleanup_folder.store(folder, std::memory_order_relaxed);
-    cleanup_set.store(1, std::memory_order_release);  // the name and folder are set before the flag
+    cleanup_set.store(1);  // the name and folder are set before the flag
+    // A signal is ending the run (end_on_signal()): no temporary is named now.
+    if (deferred_signal.load() != 0) {
+        cleanup_set.store(0);
+        end_by_deferred_signal();
+    }
     return true;
 }
 #else

@@ -203,6 +203,34 @@ TEST(other_ending_signals_leave_no_temporary) {
     }
 }
 
+// An ending signal that comes while the image is put in place under a named temporary
+// (between PendingFile::commit()'s link and rename, or before the rename of a named
+// temporary) waits until the rename is done, then ends the run as by default: the image
+// is in place and no temporary stays. Here in a child process, with the program's own
+// handlers, on commit()'s steps one at a time, so that the signal comes between them.
+TEST(an_ending_signal_while_the_image_is_put_in_place_waits_for_it) {
+    const Scratch folder;
+    write_bytes(folder.work / "out.ppm", kPrecious);
+    const std::string work = folder.work.string(), temporary = ".raytracer-0123456789abcdef.tmp";
+    const pid_t pid = fork();
+    if (pid == 0) {
+        rt::install_interrupt_handlers();
+        const int dir = open(work.c_str(), O_RDONLY | O_DIRECTORY);
+        const int fd = openat(dir, temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0644);
+        if (dir < 0 || fd < 0 || write(fd, "new image", 9) != 9 || close(fd) != 0) _exit(2);
+        rt::hold_interrupts();
+        if (!rt::set_interrupt_cleanup(dir, temporary.c_str())) _exit(3);
+        raise(SIGUSR1);  // waits: the temporary is there
+        if (faccessat(dir, temporary.c_str(), F_OK, 0) != 0) _exit(4);
+        if (renameat(dir, temporary.c_str(), dir, "out.ppm") != 0) _exit(5);
+        rt::clear_interrupt_cleanup();  // ends the run, by SIGUSR1
+        _exit(6);
+    }
+    CHECK_EQ(wait_for(pid), 1000 + SIGUSR1);
+    CHECK_EQ(read_bytes(folder.work / "out.ppm"), std::string("new image"));
+    CHECK_EQ(folder.names(), std::string("out.ppm"));
+}
+
 // Started with SIGHUP and SIGTERM ignored (nohup, trap '' TERM), the render ignores them
 // too and completes; SIGINT, not ignored, still interrupts it.
 TEST(signals_ignored_at_start_stay_ignored) {

@@ -3,10 +3,11 @@
 // so, and exits with 128 + the signal's number; once the image is being put in place,
 // nothing (hold_interrupts()). SIGQUIT, SIGPIPE, SIGALRM, SIGVTALRM, SIGPROF, SIGUSR1,
 // SIGUSR2 and SIGXCPU, where their default action stands, keep it and its exit status,
-// silently, but remove the named temporary first. A signal that was ignored when the
-// program started (nohup) stays ignored. SIGXFSZ is ignored, so that a file-size limit (ulimit -f)
-// makes a write fail, reported like a full disk, instead of killing the process
-// silently.
+// silently, but remove the named temporary first; while the image is being put in place
+// under a named temporary, they end the run once it is (clear_interrupt_cleanup()), so
+// that no temporary stays. A signal that was ignored when the program started (nohup)
+// stays ignored. SIGXFSZ is ignored, so that a file-size limit (ulimit -f) makes a write
+// fail, reported like a full disk, instead of killing the process silently.
 #pragma once
 
 #ifndef _WIN32
@@ -46,7 +47,8 @@ bool set_interrupt_cleanup(const wchar_t* path);  // any Unicode path
 // cleared): removed with unlinkat(), wherever the folder's path leads by then.
 bool set_interrupt_cleanup(int folder, const char* name);
 #endif
-// No file for a handler to remove (it has been removed, or renamed into place).
+// No file for a handler to remove (it has been removed, or renamed into place). An
+// ending signal that came while the image was being put in place ends the run here.
 void clear_interrupt_cleanup();
 
 // The length of the progress line on the terminal (0: none): a handler erases that

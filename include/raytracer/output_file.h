@@ -22,7 +22,8 @@ inline constexpr std::size_t kTemporaryNameBytes = kTemporaryPrefix.size() + 16 
 enum class Destination {
     // A new file, or a regular file replaced whole (keeping its permissions) once
     // complete. On Linux the file is created unnamed (O_TMPFILE) and linked into place
-    // by commit(), so even SIGKILL leaves nothing; on Windows it is a hidden temporary
+    // by commit(), so even SIGKILL leaves nothing (but between the two system calls
+    // that replace an existing file: link_unnamed()); on Windows it is a hidden temporary
     // beside the target that the system deletes when the process ends, however it ends,
     // until commit() keeps it; elsewhere such a temporary, removed on error and by the
     // interrupt handlers (interrupts.h).
