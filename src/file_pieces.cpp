@@ -4,12 +4,27 @@
 #include <cerrno>
 #include <cstring>
 
-#ifndef _WIN32
+#include <sys/stat.h>
 #include <sys/types.h>
+#ifdef _WIN32
+#include <stdio.h>  // _fileno
+#else
 #include <unistd.h>  // pread
 #endif
 
 namespace rt {
+
+std::optional<std::uintmax_t> regular_file_size(std::FILE* in) {
+#ifdef _WIN32
+    struct _stat64 status {};
+    if (_fstat64(_fileno(in), &status) != 0 || (status.st_mode & _S_IFMT) != _S_IFREG) return std::nullopt;
+#else
+    struct stat status {};
+    if (::fstat(fileno(in), &status) != 0 || !S_ISREG(status.st_mode)) return std::nullopt;
+#endif
+    if (status.st_size < 0) return std::nullopt;
+    return static_cast<std::uintmax_t>(status.st_size);
+}
 
 #ifdef _WIN32
 FileAt::FileAt(std::FILE*, std::size_t size) : size_(size) {}

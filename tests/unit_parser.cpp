@@ -464,6 +464,26 @@ TEST(file_at_reads_whole_lines_in_order) {
     CHECK_EQ(std::ftell(in.get()), 0L);
 }
 
+// regular_file_size() (file_pieces.h) asks the open file, not its name: a file renamed
+// over the name since changes nothing (POSIX; Windows refuses to rename over an open
+// file). Nothing but a regular file has a size: a folder has none.
+TEST(a_file_size_is_the_open_files) {
+    const TempFile opened(std::string(1000, 'a')), other(std::string(70000, 'b'));
+    const std::unique_ptr<std::FILE, int (*)(std::FILE*)> in(std::fopen(opened.path.string().c_str(), "rb"),
+                                                             &std::fclose);
+    CHECK(in != nullptr);
+    if (!in) return;
+    CHECK(rt::regular_file_size(in.get()) == std::optional<std::uintmax_t>(1000));
+#ifndef _WIN32
+    std::filesystem::rename(other.path, opened.path);
+    CHECK_EQ(std::filesystem::file_size(opened.path), std::uintmax_t{70000});
+    CHECK(rt::regular_file_size(in.get()) == std::optional<std::uintmax_t>(1000));
+    const std::unique_ptr<std::FILE, int (*)(std::FILE*)> folder(
+        std::fopen(std::filesystem::temp_directory_path().string().c_str(), "rb"), &std::fclose);
+    if (folder) CHECK(!rt::regular_file_size(folder.get()).has_value());  // Linux opens a folder
+#endif
+}
+
 // parse_scene_file() gives what reading the whole text gives: the scene, for any line
 // ends, byte-order mark and number of pieces; the first mistake on its line; an empty
 // and a UTF-16 text refused as load_scene() refuses them.

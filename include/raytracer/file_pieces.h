@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <cstdio>
 #include <optional>
 #include <string_view>
@@ -23,6 +24,11 @@ inline constexpr bool kReadsInPieces = false;
 #else
 inline constexpr bool kReadsInPieces = true;
 #endif
+
+// The size of the regular file open as `in`, asked of the open file, not of its name
+// (another file may be renamed over the name meanwhile); nullopt for anything else (a
+// pipe, a device, a folder) or where the system does not say.
+std::optional<std::uintmax_t> regular_file_size(std::FILE* in);
 
 // The file open as `in`, of `size` bytes when its size was taken. Every read is at an
 // offset of its own, so the handle's position stays where it was, and every read is
