@@ -23,8 +23,8 @@ std::string seconds(double s) {
     if (s < 60) {
         (void)std::snprintf(text, sizeof text, "%.0f s", s);
     } else {
-        const long whole = static_cast<long>(s);
-        (void)std::snprintf(text, sizeof text, "%ld:%02ld min", whole / 60, whole % 60);
+        const long long whole = static_cast<long long>(std::min(s, 1e15));  // long is 32 bits on Windows
+        (void)std::snprintf(text, sizeof text, "%lld:%02lld min", whole / 60, whole % 60);
     }
     return text;
 }
