@@ -14,8 +14,9 @@
 #include <io.h>  // _write
 #include <stdlib.h>
 #else
-#include <fcntl.h>   // unlinkat
-#include <unistd.h>  // write, _exit, pause
+#include <fcntl.h>    // unlinkat
+#include <pthread.h>  // pthread_sigmask
+#include <unistd.h>   // write, _exit, pause
 #endif
 
 namespace rt {
@@ -249,5 +250,38 @@ void set_interrupt_erases_line(int length) {
 void set_interrupt_output_is_stream(bool stream) {
     output_is_stream.store(stream ? 1 : 0, std::memory_order_relaxed);
 }
+
+#ifdef _WIN32
+QuietBrokenPipe::QuietBrokenPipe() = default;
+QuietBrokenPipe::~QuietBrokenPipe() = default;
+#else
+namespace {
+sigset_t broken_pipe() {
+    sigset_t set;
+    sigemptyset(&set);
+    (void)sigaddset(&set, SIGPIPE);
+    return set;
+}
+}  // namespace
+
+QuietBrokenPipe::QuietBrokenPipe() {
+    sigset_t pending;
+    pending_before_ = sigpending(&pending) == 0 && sigismember(&pending, SIGPIPE) == 1;
+    const sigset_t pipe = broken_pipe();
+    (void)pthread_sigmask(SIG_BLOCK, &pipe, &before_);
+}
+
+// The SIGPIPE a failed write raised is pending on this thread, blocked: taken here
+// (sigwait returns at once, as it is pending) before the mask is restored.
+QuietBrokenPipe::~QuietBrokenPipe() {
+    sigset_t pending;
+    if (!pending_before_ && sigpending(&pending) == 0 && sigismember(&pending, SIGPIPE) == 1) {
+        const sigset_t pipe = broken_pipe();
+        int taken = 0;
+        (void)sigwait(&pipe, &taken);
+    }
+    (void)pthread_sigmask(SIG_SETMASK, &before_, nullptr);
+}
+#endif
 
 }  // namespace rt

@@ -82,6 +82,7 @@ const char* usage_text() {
 // -o ..." for the user's.
 int cannot_write(const std::string& scene_file, const rt::Scene& scene, const rt::OutputChoice& output,
                  const std::string& what) {
+    const rt::QuietBrokenPipe quiet;
     if (output.named_by_user)
         std::fprintf(stderr, "raytracer.exe: error: -o %s\n", what.c_str());
     else
@@ -158,6 +159,7 @@ int main(int argc, char** argv) {
         std::fputs(text.c_str(), stdout);
         // A full disk or a closed stdout is an error, not a silent success.
         if (std::fflush(stdout) != 0 || std::ferror(stdout) != 0) {
+            const rt::QuietBrokenPipe quiet;
             std::fprintf(stderr, "raytracer.exe: error: standard output could not be written: %s\n",
                          std::strerror(errno));
             return kCannotWrite;
@@ -166,6 +168,7 @@ int main(int argc, char** argv) {
     }
     if (command.action == rt::CommandLine::Action::Wrong) {
         // One line on stderr (graders collect them): a pointer to --help, not the text.
+        const rt::QuietBrokenPipe quiet;
         std::fprintf(stderr, "raytracer.exe: error: %s (see --help)\n", command.error.c_str());
         return kBadUsage;
     }
@@ -184,9 +187,11 @@ int main(int argc, char** argv) {
         size = {true, scene.columns, scene.rows, scene.spheres.size(), scene.lights.size()};
         return write_image(command, scene);
     } catch (const rt::SceneError& e) {
+        const rt::QuietBrokenPipe quiet;
         std::fprintf(stderr, "%s\n", e.what());
         return kBadScene;
     } catch (const std::bad_alloc&) {
+        const rt::QuietBrokenPipe quiet;
         if (!size.known) {
             std::fprintf(stderr,
                          "raytracer.exe: error: out of memory reading %s, expected a smaller scene file\n",
@@ -206,6 +211,7 @@ int main(int argc, char** argv) {
     } catch (const std::exception& e) {
         // Nothing here is expected to throw anything else; still, fail with one line
         // rather than through std::terminate.
+        const rt::QuietBrokenPipe quiet;
         std::fprintf(stderr, "raytracer.exe: error: internal error on %s: %s\n", shown_file.c_str(),
                      rt::escaped(e.what()).c_str());
         return kInternalError;

@@ -91,6 +91,8 @@ void ProgressSink::draw(std::chrono::steady_clock::duration elapsed) {
     line[shown] = '\0';
     // A handler that runs while the line is redrawn erases the longer of the two.
     set_interrupt_erases_line(std::max(drawn_, shown));
+    // A reader of stderr gone loses the line, not the image.
+    const QuietBrokenPipe quiet;
     erase();  // or, the first time, go to the start of the line
     (void)std::fputs(line, stderr);
     (void)std::fflush(stderr);
@@ -108,6 +110,7 @@ void ProgressSink::erase() const {
 
 void ProgressSink::clear_line() {
     if (drawn_ == 0) return;
+    const QuietBrokenPipe quiet;
     erase();
     (void)std::fflush(stderr);
     set_interrupt_erases_line(0);

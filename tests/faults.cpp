@@ -96,9 +96,10 @@ pid_t start(const Scratch& folder, const std::vector<std::string>& args, const O
     // ctest, a script's background job): raytracer.exe keeps an ignored one ignored.
     sigset_t interrupts;
     sigemptyset(&interrupts);
-    for (const int signal_number : {SIGINT, SIGTERM, SIGHUP}) {
+    for (const int signal_number : {SIGINT, SIGTERM, SIGHUP, SIGPIPE}) {
         sigaddset(&interrupts, signal_number);
-        const bool ignored = options.ignore_hangup_and_term && signal_number != SIGINT;
+        const bool ignored =
+            options.ignore_hangup_and_term && (signal_number == SIGHUP || signal_number == SIGTERM);
         signal(signal_number, ignored ? SIG_IGN : SIG_DFL);
     }
     sigprocmask(SIG_UNBLOCK, &interrupts, nullptr);
@@ -229,6 +230,26 @@ TEST(an_ending_signal_while_the_image_is_put_in_place_waits_for_it) {
     CHECK_EQ(wait_for(pid), 1000 + SIGUSR1);
     CHECK_EQ(read_bytes(folder.work / "out.ppm"), std::string("new image"));
     CHECK_EQ(folder.names(), std::string("out.ppm"));
+}
+
+// A reader of standard error gone (2>&1 | head) loses the progress line and the
+// messages, not the image nor the exit status: those writes fail (EPIPE) instead of
+// ending the run by SIGPIPE.
+TEST(a_reader_of_stderr_gone_loses_only_what_goes_there) {
+    const Scratch folder;
+    write_bytes(folder.work / "slow.txt", slow_scene("out.ppm"));
+    write_bytes(folder.work / "bad.txt", "NEAR 1\n");
+    int ends[2] = {-1, -1};
+    CHECK_EQ(pipe(ends), 0);
+    close(ends[0]);  // nobody reads
+    Options options;
+    options.stderr_fd = ends[1];
+    // One thread: the render outlasts the progress line's first second.
+    CHECK_EQ(run(folder, {"--threads", "1", "--progress", "slow.txt"}, options), 0);
+    CHECK_EQ(read_bytes(folder.work / "out.ppm").size(), slow_image_bytes());
+    CHECK_EQ(run(folder, {"bad.txt"}, options), 1);
+    CHECK_EQ(run(folder, {"--threads", "0", "bad.txt"}, options), 2);
+    close(ends[1]);
 }
 
 // Started with SIGHUP and SIGTERM ignored (nohup, trap '' TERM), the render ignores them

@@ -60,4 +60,24 @@ void set_interrupt_erases_line(int length);
 // The message then says it is incomplete, not that no image was written.
 void set_interrupt_output_is_stream(bool stream);
 
+// While one lives, a write on this thread to a pipe whose reader is gone fails with
+// EPIPE instead of raising SIGPIPE. Around writes to standard error, so that a reader of
+// it gone (2>&1 | head) loses the messages and the progress line, not the image nor the
+// exit status; a reader of the image gone still ends the run by SIGPIPE. (POSIX; on
+// Windows a write to a closed pipe fails without a signal.)
+class QuietBrokenPipe {
+public:
+    QuietBrokenPipe();
+    ~QuietBrokenPipe();
+    QuietBrokenPipe(const QuietBrokenPipe&) = delete;
+    QuietBrokenPipe& operator=(const QuietBrokenPipe&) = delete;
+
+private:
+#ifndef _WIN32
+    sigset_t before_{};  // this thread's mask before
+    // A SIGPIPE was pending already: not this one's to take.
+    bool pending_before_ = false;
+#endif
+};
+
 }  // namespace rt
