@@ -137,7 +137,8 @@ bool overrides_sticky_folders() {
 }
 
 // Why this user may not replace the regular file at path, or empty: it is write-protected
-// (a policy: a shell's > and cp refuse it too), or another user's in a folder with the
+// (a policy: a shell's > and cp refuse it too), in a folder this user may not write
+// (the complete image is renamed over it there), or another user's in a folder with the
 // sticky bit (/tmp), where rename() may not replace it. A symbolic link at the name is
 // what is replaced (not followed): its own owner counts, not its target's permissions.
 std::string unreplaceable(const std::string& path) {
@@ -148,9 +149,13 @@ std::string unreplaceable(const std::string& path) {
         errno == EACCES)
         return " is write-protected (no write permission for this user), expected a file it may write";
     const fs::path parent = fs::path(path).parent_path();
+    const char* const parent_name = parent.empty() ? "." : parent.c_str();
+    if (::faccessat(AT_FDCWD, parent_name, W_OK, AT_EACCESS) != 0 && errno == EACCES)
+        return " is in a folder this user may not write, where the complete image would be renamed over it, "
+               "expected a file in a writable folder";
     const uid_t user = ::geteuid();
-    if (::stat(parent.empty() ? "." : parent.c_str(), &folder) == 0 && (folder.st_mode & S_ISVTX) != 0 &&
-        name.st_uid != user && folder.st_uid != user && !overrides_sticky_folders())
+    if (::stat(parent_name, &folder) == 0 && (folder.st_mode & S_ISVTX) != 0 && name.st_uid != user &&
+        folder.st_uid != user && !overrides_sticky_folders())
         return " is another user's file in a folder where only its owner may replace it (sticky, as /tmp), "
                "expected a file of this user";
     return {};

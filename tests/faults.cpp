@@ -482,9 +482,10 @@ TEST(a_replaced_file_keeps_its_mode) {
 }
 
 // An image that could not be put in place is refused before the render, not after it:
-// a write-protected file (as a shell's > refuses it), another user's file in a folder
-// with the sticky bit (rename() may not replace it there), a name longer than the
-// system takes. Run by root (as CI is), as another user: root may write anything.
+// a write-protected file (as a shell's > refuses it), a file in a folder this user may
+// not write, another user's file in a folder with the sticky bit (rename() may not
+// replace it there), a name longer than the system takes. Run by root (as CI is), as
+// another user: root may write anything.
 TEST(unreplaceable_outputs_are_refused_before_the_render) {
     const Scratch folder;
     const bool root = geteuid() == 0;
@@ -520,6 +521,18 @@ TEST(unreplaceable_outputs_are_refused_before_the_render) {
                                          "owner may replace it") != std::string::npos);
         CHECK_EQ(read_bytes(shared), kPrecious);
         CHECK_EQ(run(folder, {"-o", "mine.ppm", "scene.txt"}, user), 0);  // a new file is made
+        // A file it may write, in a folder it may not: the rename could not put the image there.
+        const fs::path closed = folder.work / "closed";
+        fs::create_directory(closed);
+        write_bytes(closed / "open.ppm", kPrecious);
+        CHECK_EQ(chmod((closed / "open.ppm").c_str(), 0666), 0);
+        CHECK_EQ(chmod(closed.c_str(), 0555), 0);
+        CHECK_EQ(run(folder, {"-o", "closed/open.ppm", "scene.txt"}, user), 3);
+        CHECK(captured_stderr(folder).find("-o 'closed/open.ppm' is in a folder this user may not write") !=
+              std::string::npos);
+        CHECK_EQ(read_bytes(closed / "open.ppm"), kPrecious);
+        CHECK_EQ(chmod(closed.c_str(), 0755), 0);
+        fs::remove_all(closed);
     }
     CHECK_EQ(run(folder, {"-o", std::string(256, 'a'), "scene.txt"}), 3);
     CHECK(captured_stderr(folder).find("is too long a name or path for the system") != std::string::npos);
