@@ -43,14 +43,16 @@ inline std::chrono::microseconds worth_helping() {
 }
 
 // The image on `threads` threads (0: all cores, called in as `when` says; never more
-// than one a row): each band of at most BandRows rows drawn by draw(first_row, rows,
-// out, scratch), out[j] the bytes of row first_row + j, with the drawing thread's
-// scratch from make_scratch(). Every pixel must be a pure function of the scene and its
-// position, so that the image is the same whichever thread draws which rows.
+// than one a band, as another would hold its scratch and draw nothing): each band of at
+// most BandRows rows drawn by draw(first_row, rows, out, scratch), out[j] the bytes of
+// row first_row + j, with the drawing thread's scratch from make_scratch(). Every pixel
+// must be a pure function of the scene and its position, so that the image is the same
+// whichever thread draws which rows.
 template <int BandRows = kBandRows, typename MakeScratch, typename Draw>
 void render_bands(const Scene& scene, RowSink& sink, unsigned threads, MakeScratch make_scratch, Draw draw,
                   CallHelpers when = CallHelpers::AtStart) {
-    const unsigned most = std::min(threads_asked(threads), static_cast<unsigned>(scene.rows));
+    const int bands = scene.rows / BandRows + (scene.rows % BandRows != 0 ? 1 : 0);
+    const unsigned most = std::min(threads_asked(threads), static_cast<unsigned>(std::max(1, bands)));
     RowRing ring(sink, scene.rows, bytes_of_pixels(scene.columns), BandRows, most);
     std::atomic<int> next_row{0};
     using Scratch = decltype(make_scratch());
