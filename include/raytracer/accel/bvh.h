@@ -9,15 +9,17 @@
 // the nearest root found so far; the any-hit query takes them in any order and stops at the first blocker.
 //
 // Exactness: a query returns what brute_force.h returns, bit for bit. Each ellipsoid's box is its
-// axis-aligned bounding box grown by at least kCullingGap of each scale (exact_culling.h, slab_rays.h), a
-// gap of 1e-3 in the unit sphere's space; a root that intersect() reports lies within a few ulps of |o'| of
+// axis-aligned bounding box grown by at least kCullingGap of each scale (exact_culling.h, ellipsoid_boxes.h),
+// a gap of 1e-3 in the unit sphere's space; a root that intersect() reports lies within a few ulps of |o'| of
 // the unit sphere (the rounding of the mapped origin, plus the tangency allowance, unit_sphere_roots.h), so
 // its point lies deep inside the box, and the slab test's own rounding (a few ulps of the box's distance)
 // cannot move it out. A ray that runs in a slab's plane, where the slab test's 0 * inf is NaN, cannot reach a
 // box's inside at all. Both hold only while the ray's origin is within the reach its box's gap holds
-// (BoxGaps, slab_rays.h: |o'| <= 2e10 in double for the gap of 1e-3, the roots' rounding 5e-4 there; an
+// (BoxGaps, ellipsoid_boxes.h: |o'| <= 2e10 in double for the gap of 1e-3, the roots' rounding 5e-4 there; an
 // ellipsoid thin beside its scene is grown more, so that its box culls rays from anywhere in it): a child is
-// culled only for a ray from within the guard distance of every ellipsoid under it, else visited unculled. A
+// culled for a ray from within the guard distance of every ellipsoid under it, and for one from farther by
+// its box grown for the ray's distance (margin_per_reach(), children_met(); lone rays: a bundle from there
+// goes ray by ray); a leaf's ellipsoids are then all solved. A
 // child whose box holds the ray's origin is never culled either: from a point on the surface (|o'| = 1 within
 // rounding) along its tangent plane, o'.d' is a rounding residue, and where intersect() clamps the
 // discriminant to zero (the tangency allowance) its second root c/q is c / |o'.d'|, anywhere along the ray,
@@ -40,6 +42,7 @@
 
 #include "raytracer/accel/bvh_build.h"
 #include "raytracer/accel/cleared_lanes.h"
+#include "raytracer/accel/ellipsoid_boxes.h"
 #include "raytracer/accel/eye_block.h"
 #include "raytracer/accel/shadow_prefilter.h"
 #include "raytracer/accel/slab_rays.h"

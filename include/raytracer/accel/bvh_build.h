@@ -33,13 +33,14 @@ struct BuildBox {
 };
 
 // What the tree is built over: a box, its centre, a value kept as the minimum over each
-// subtree (bvh.h's guard), and the caller's index.
+// subtree (bvh.h's guard) and one kept as the maximum (the margin per unit of distance
+// its box needs past the guard), and the caller's index.
 template <typename C>
 struct BuildItem {
     BuildItem() {}  // NOLINT: not zeroed, so that a list of them is first touched where each is set
     BuildBox<C> box;
     C centre[3];
-    C guard;
+    C guard, rate;
     std::uint32_t index;
 };
 
@@ -47,6 +48,7 @@ template <typename C>
 struct BuildNode {
     BuildBox<C> box;
     C guard;                  // the minimum of the items' guards
+    C rate;                   // the maximum of the items' rates
     std::uint32_t first = 0;  // a leaf's first item; an inner node's first child
     std::uint32_t count = 0;  // a leaf's items; 0 for an inner node, whose children are first, first + 1
 };
@@ -89,12 +91,13 @@ private:
               int depth) {
         // The node's box and guard, and the box of the items' centres, in one pass.
         BuildNode<C> n;
-        n.box = items[first].box, n.guard = items[first].guard;
+        n.box = items[first].box, n.guard = items[first].guard, n.rate = items[first].rate;
         BuildBox<C> centres;
         for (int a = 0; a < 3; ++a) centres.lo[a] = centres.hi[a] = items[first].centre[a];
         for (std::size_t k = first + 1; k < last; ++k) {
             const BuildItem<C>& item = items[k];
-            n.box.grow(item.box), n.guard = std::min(n.guard, item.guard);
+            n.box.grow(item.box), n.guard = std::min(n.guard, item.guard),
+                                  n.rate = std::max(n.rate, item.rate);
             for (int a = 0; a < 3; ++a)
                 centres.lo[a] = std::min(centres.lo[a], item.centre[a]),
                 centres.hi[a] = std::max(centres.hi[a], item.centre[a]);
@@ -276,11 +279,13 @@ struct WideChild {  // trivial: the traversal's stack is not initialised
 };
 // Width children; their boxes (side 0 the low corner, 1 the high one), by axis and lane,
 // and guards: a child may be culled for a ray whose origin lies within this max-norm
-// distance of each of its corners (bvh.h).
+// distance of each of its corners (bvh.h), and past it by its box grown by rate times
+// that distance (margin_per_reach()).
 template <typename C, int Width>
 struct WideNode {
     C box[2][3][Width];
     C guard[Width];
+    C rate[Width];
     WideChild child[Width];
     unsigned used;  // bit k for each child k in use
 };
@@ -336,13 +341,13 @@ std::uint32_t collapse_node(const LargeVector<BuildNode<C>>& binary, std::uint32
     for (int k = 0; k < Width; ++k) {  // unused lanes: an empty box, not in used
         for (int a = 0; a < 3; ++a)
             node.box[0][a][k] = std::numeric_limits<C>::max(), node.box[1][a][k] = -node.box[0][a][k];
-        node.guard[k] = std::numeric_limits<C>::max();
+        node.guard[k] = std::numeric_limits<C>::max(), node.rate[k] = 0;
     }
     node.used = (1U << used) - 1;
     for (int k = 0; k < used; ++k) {
         const BuildNode<C>& child = binary[lanes[k]];
         for (int a = 0; a < 3; ++a) node.box[0][a][k] = child.box.lo[a], node.box[1][a][k] = child.box.hi[a];
-        node.guard[k] = child.guard;
+        node.guard[k] = child.guard, node.rate[k] = child.rate;
         WideChild leaf;
         if (child.count > 0)
             node.child[k] = {child.first, child.count};

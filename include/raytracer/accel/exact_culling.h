@@ -22,7 +22,8 @@ namespace rt {
 // A bounding volume that holds its ellipsoid with a gap of kCullingGap in the unit
 // sphere's space (the flat sweep's spheres, the tree's boxes) therefore rules out only
 // tests that would find no usable root, for rays from within a reach where that
-// rounding stays inside the gap; beyond it nothing is culled.
+// rounding stays inside the gap; beyond it, only by a volume grown for the ray's
+// distance (the tree's boxes: margin_per_reach()).
 inline constexpr double kCullingGap = 1e-3;
 // The silhouette tests (silhouette.h, screen_bounds.h) square an eye ray's direction in
 // an ellipsoid's unit space: from this size on, its squares and their products with
@@ -40,7 +41,7 @@ constexpr double culling_reach() {
 }
 // The tree's: a gap of gap_per_reach() |o'| holds the bound twice over in double (and in
 // long double, whose rounding is smaller), so a box grown by kCullingGap culls rays from
-// within 2e10 smallest scales, and one grown more from farther (BoxGaps, slab_rays.h);
+// within 2e10 smallest scales, and one grown more from farther (BoxGaps, ellipsoid_boxes.h);
 // float keeps the flat sweep's reach. (speed.accel's adversarial rays find no difference
 // even at 1e-16, where the bound is 240 times the gap at the reach: the rounding seen is
 // far below it, and the bound, not what a test happened to find, sets the reach.)
@@ -51,6 +52,16 @@ constexpr double gap_per_reach() {
 }
 // The most a tree's box is grown, in the unit sphere's space: twice its ellipsoid.
 inline constexpr double kLargestCullingGap = 1;
+// Beyond its guard, a box still culls a ray from max-norm distance D once grown by D
+// times this and the ellipsoid's aspect (largest over smallest scale) on each side: the
+// roots' bound 110 eps (1 + |o'|), with |o'| <= sqrt(3) D / smallest < 2 D / smallest
+// there (D > guard > 50 smallest scales), is 220 eps D / smallest in the unit sphere's
+// space, at most 220 eps D aspect in the world on any axis; held twice over, which
+// also covers the rounding of the grown box's planes (children_met()).
+template <typename Real>
+constexpr double margin_per_reach() {
+    return 2 * 220 * static_cast<double>(std::numeric_limits<Real>::epsilon());
+}
 
 // Whether the ellipsoid a shadow ray starts on cannot block it, so that
 // blocks_segment() need not be asked. From a point seen from outside, towards a light in

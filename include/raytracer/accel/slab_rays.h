@@ -1,7 +1,7 @@
 // The ray/box arithmetic of the acceleration layer (bvh.h): a ray, or a bundle of rays,
-// as the slab test takes it; the slab test of one box; an ellipsoid's inflated box; and
-// the rays of a bundle's lanes, tried against an ellipsoid's box and then exactly.
-// bvh.h states why each cull is exact.
+// as the slab test takes it; the slab test of one box, and of a wide node's children;
+// and the rays of a bundle's lanes, tried against an ellipsoid's box
+// (ellipsoid_boxes.h) and then exactly. bvh.h states why each cull is exact.
 #pragma once
 
 #include <algorithm>
@@ -117,6 +117,34 @@ bool within_guard(const BuildBox<C>& bounds, C guard, const C (&o_lo)[3], const 
     return farthest <= guard;
 }
 
+// Whether a ray from `distance` (max-norm, to the box's farthest corner) beyond child k's
+// guard may meet its box grown by rate times that distance (margin_per_reach()), plus
+// 2 eps of each plane, so that the grown plane's own rounding stays outside the margin
+// the roots need. Never culled where the margin is not a finite number, nor tried where
+// it is over kUntriedSpread times the distance or kUntriedGrowth times the box's widest
+// side: nearly every ray aimed near the box meets it then. (Whole process, 2 threads:
+// a crowd of 5,000 beside a ball 1e16 across, its rays from 1e16 away, medians of 3,
+// 7.01 s with the test, 6.27 s without, 5.80 s before boxes were grown; 2,000 discs
+// 1e-14 thick, 8.76 s before, 11.06 s with the test.)
+inline constexpr double kUntriedGrowth = 256, kUntriedSpread = 1.0 / 16;
+template <typename C, int Width>
+bool meets_grown_child(const WideNode<C, Width>& node, int k, const SlabRay<C>& ray, C t1, C distance) {
+    constexpr C kEps = std::numeric_limits<C>::epsilon();
+    if (!(node.rate[k] <= C(kUntriedSpread))) return true;
+    const C margin = distance * node.rate[k];
+    if (!(margin <= std::numeric_limits<C>::max())) return true;
+    C widest = 0;
+    for (int a = 0; a < 3; ++a) widest = std::max(widest, node.box[1][a][k] - node.box[0][a][k]);
+    if (margin > C(kUntriedGrowth) * widest) return true;
+    BuildBox<C> box;
+    for (int a = 0; a < 3; ++a) {
+        const C lo = node.box[0][a][k], hi = node.box[1][a][k];
+        box.lo[a] = lo - (margin + 2 * kEps * std::abs(lo)),
+        box.hi[a] = hi + (margin + 2 * kEps * std::abs(hi));
+    }
+    return meets_box(ray, box, t1);
+}
+
 // Which children of node the ray may meet within [0, t1] (bit k for child k), and where
 // it enters each. The slabs are clipped at t = 0, not at the query's start, so that a
 // box holding the origin is always met (the tangent roots of bvh.h): there each slab's
@@ -148,120 +176,13 @@ RT_ALWAYS_INLINE unsigned children_met(const WideNode<C, Width>& node, const Sla
         mask |= met ? 1U << k : 0U;
         near[k] = kGuarded || farthest[k] <= node.guard[k] ? enter[k] : C(0);
     }
+    if (!kGuarded)  // a child beyond its guard: its box grown for the ray's distance
+        for (unsigned m = mask & node.used; m != 0; m &= m - 1) {
+            const int k = lowest_bit(m);
+            if (farthest[k] > node.guard[k] && !meets_grown_child(node, k, ray, t1, farthest[k]))
+                mask &= ~(1U << k);
+        }
     return mask & node.used;
-}
-
-// |scale| of an ellipsoid on each axis, and the least of the three.
-template <typename C, typename Real>
-void abs_scales(const Ellipsoid<Real>& e, C (&s)[3]) {
-    using std::abs;
-    s[0] = abs(C(e.scale.x)), s[1] = abs(C(e.scale.y)), s[2] = abs(C(e.scale.z));
-}
-template <typename C>
-C smallest_of(const C (&s)[3]) {
-    return std::min({s[0], s[1], s[2]});
-}
-
-// How far the tree grows an ellipsoid's box, and from how far the box may cull a ray
-// (exact_culling.h): grown by kCullingGap of each scale, it culls rays from within
-// 2e10 smallest scales (double), which covers nearly every scene. An ellipsoid thin or
-// small beside its scene (a disc 1e-11 thick seen from 30 away: |o'| = 3e12) is grown
-// by the larger gap that culling from anywhere in the scene needs, up to
-// kLargestCullingGap; past that, rays from beyond its reach try it unculled. (Only
-// ellipsoids below 1e-13 of the scene's extent take the largest gap, under a thousand
-// ulps of its coordinates: in a scene with one ellipsoid some 1e13 times larger than all
-// the others, every other box is doubled.)
-template <typename Real>
-class BoxGaps {
-public:
-    using C = AtLeastDouble<Real>;
-
-    BoxGaps() = default;  // kCullingGap for every ellipsoid
-    // For a scene whose rays start within `extent` (max-norm) of every point of every box.
-    explicit BoxGaps(C extent) {
-        const C needed = 2 * C(gap_per_reach<Real>()) * extent;  // gap times scale: guard = extent
-        if (!(needed / C(kCullingGap) <= std::numeric_limits<C>::max())) return;
-        needed_ = needed, grown_below_ = needed / C(kCullingGap);
-    }
-
-    // The gap of an ellipsoid whose smallest scale is `smallest`, in its unit sphere's space.
-    C gap(C smallest) const {
-        return smallest >= grown_below_ ? C(kCullingGap)
-                                        : std::min(C(kLargestCullingGap), needed_ / smallest);
-    }
-    // The max-norm distance from which its box may cull a ray: the reach that gap holds,
-    // halved, as the Euclidean distance is at most sqrt(3) times the max-norm one. 0 for
-    // a scale that is not a number.
-    C guard(C smallest) const {
-        const C guard = gap(smallest) / C(gap_per_reach<Real>()) * smallest / 2;
-        return guard <= std::numeric_limits<C>::max() ? guard : guard > 0 ? std::numeric_limits<C>::max() : 0;
-    }
-    // The smallest scales below which gap() may exceed kCullingGap.
-    C grown_below() const { return grown_below_; }
-
-private:
-    C needed_ = 0;       // the gap times the smallest scale that culling from anywhere needs
-    C grown_below_ = 0;  // needed_ / kCullingGap
-};
-
-// What BoxGaps is made from, gathered ellipsoid by ellipsoid: rays start at the eye (the
-// origin) or on an ellipsoid, inside its box (within c +- (1 + kLargestCullingGap) s),
-// so within twice the largest |c| + (1 + kLargestCullingGap) |s| (max-norm) of every
-// box; and the smallest scale of all. A ray that starts elsewhere (a hit point's own
-// rounding) is still exact: each ray's origin is checked against the guards.
-template <typename C>
-struct SceneExtent {
-    C farthest = 0, smallest = std::numeric_limits<C>::infinity();
-
-    template <typename Real>
-    void add(const Ellipsoid<Real>& e) {
-        C s[3];
-        abs_scales(e, s);
-        const C c[3] = {C(e.centre.x), C(e.centre.y), C(e.centre.z)};
-        for (int a = 0; a < 3; ++a)
-            farthest = std::max(farthest, std::abs(c[a]) + (1 + C(kLargestCullingGap)) * s[a]);
-        smallest = std::min(smallest, smallest_of(s));
-    }
-    void add(const SceneExtent& other) {
-        farthest = std::max(farthest, other.farthest), smallest = std::min(smallest, other.smallest);
-    }
-    C extent() const { return 2 * farthest; }  // from any such point to any other
-};
-
-// An ellipsoid's box: grown by its gap of each scale (BoxGaps), by 4 ulps of the centre
-// too, so that the box's own rounding stays inside the gap even for a small ellipsoid
-// far from the origin, and by the smallest subnormal, as a scale below 500 of them is
-// its own product with 1 + kCullingGap: a gap of one ulp is still > kCullingGap of it.
-// Computed where a leaf is visited, not stored: 48 bytes more an ellipsoid, and no
-// faster measured (docs/speed.md, "Tried and dropped").
-template <typename C, typename Real>
-BuildBox<C> inflated_box(const Ellipsoid<Real>& e, const BoxGaps<Real>& gaps) {
-    using std::abs;
-    const C c[3] = {C(e.centre.x), C(e.centre.y), C(e.centre.z)};
-    C s[3];
-    abs_scales(e, s);
-    const C grow = 1 + gaps.gap(smallest_of(s));
-    BuildBox<C> box;
-    for (int a = 0; a < 3; ++a) {
-        const C half = s[a] * grow + abs(c[a]) * 4 * std::numeric_limits<C>::epsilon() +
-                       std::numeric_limits<C>::denorm_min();
-        box.lo[a] = c[a] - half, box.hi[a] = c[a] + half;
-    }
-    return box;
-}
-
-// Ellipsoid e as the tree's build takes it (bvh_build.h): its inflated box, its centre
-// and its guard distance (BoxGaps).
-template <typename C, typename Real>
-BuildItem<C> build_item(const Ellipsoid<Real>& e, std::uint32_t index, const BoxGaps<Real>& gaps) {
-    C s[3];
-    abs_scales(e, s);
-    BuildItem<C> item;
-    item.box = inflated_box<C>(e, gaps);
-    item.centre[0] = C(e.centre.x), item.centre[1] = C(e.centre.y), item.centre[2] = C(e.centre.z);
-    item.guard = gaps.guard(smallest_of(s));
-    item.index = index;
-    return item;
 }
 
 // The rays of a bundle's lanes, by axis and lane, each to be met within [0, t1[k].
