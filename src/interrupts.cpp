@@ -27,9 +27,10 @@ namespace {
 // pause; on Windows, signal() to stay installed), which are async-signal-safe. A name
 // is copied into cleanup_path before cleanup_set is raised, so a handler never sees
 // half a name: the flags are lock-free atomics, stored with release (or stronger) and
-// loaded with acquire, as a handler may run on another thread than the one that sets them (on
-// Windows a thread of its own; elsewhere the main thread, or a helper for the ending
-// signals), where a fence for signals alone would not order the name before the flag.
+// loaded with acquire, as a handler may run on another thread than the one that sets
+// them (on Windows a thread of its own; elsewhere the main thread, or a helper for the
+// ending signals), where a fence for signals alone would not order the name before the
+// flag.
 static_assert(std::atomic<int>::is_always_lock_free, "a signal handler may use only lock-free atomics");
 constexpr std::size_t kMaxPath = 4096;
 #ifdef _WIN32
@@ -71,7 +72,7 @@ std::atomic<int> phase{kRunning};
 // while a temporary would stay.
 std::atomic<int> deferred_signal{0};
 constexpr int kInterruptSignals[] = {SIGINT, SIGTERM, SIGHUP};
-// The other signals that end a process by default (Ctrl-\, a reader of stderr gone,
+// The other signals that end a process by default (Ctrl-\, a reader of the image gone,
 // timers, the user's): they keep their default action and exit status (SIGQUIT's core,
 // SIGPIPE's silent 141), but the named temporary is removed first, or, while the image
 // is being put in place, the run ends once it is.

@@ -189,7 +189,7 @@ TEST(an_interrupted_render_leaves_nothing_and_exits_128_plus_the_signal) {
 }
 
 // Signals that end a process without a handler of ours (SIGUSR1, SIGALRM; Ctrl-\ and a
-// reader of stderr gone alike) end it as by default, but leave no named temporary.
+// reader of the image gone alike) end it as by default, but leave no named temporary.
 TEST(other_ending_signals_leave_no_temporary) {
     for (const int signal_number : {SIGUSR1, SIGALRM}) {
         const Scratch folder;

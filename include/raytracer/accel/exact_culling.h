@@ -52,12 +52,14 @@ constexpr double gap_per_reach() {
 }
 // The most a tree's box is grown, in the unit sphere's space: twice its ellipsoid.
 inline constexpr double kLargestCullingGap = 1;
-// Beyond its guard, a box still culls a ray from max-norm distance D once grown by D
-// times this and the ellipsoid's aspect (largest over smallest scale) on each side: the
-// roots' bound 110 eps (1 + |o'|), with |o'| <= sqrt(3) D / smallest < 2 D / smallest
-// there (D > guard > 50 smallest scales), is 220 eps D / smallest in the unit sphere's
-// space, at most 220 eps D aspect in the world on any axis; held twice over, which
-// also covers the rounding of the grown box's planes (children_met()).
+// Beyond its guard, a box still culls a ray from max-norm distance D once grown on each
+// side by D times this and the largest aspect (largest over smallest scale) of the
+// ellipsoids in it. For each of them, either D is within its own guard, where its box
+// already suffices, or D > guard > 50 smallest scales, where the roots' bound
+// 110 eps (1 + |o'|), with |o'| <= sqrt(3) D / smallest < 2 D / smallest, is
+// 220 eps D / smallest in the unit sphere's space, at most 220 eps D aspect in the world
+// on any axis; held twice over, which also covers the rounding of the grown box's
+// planes (meets_grown_child()).
 template <typename Real>
 constexpr double margin_per_reach() {
     return 2 * 220 * static_cast<double>(std::numeric_limits<Real>::epsilon());

@@ -122,10 +122,8 @@ bool within_guard(const BuildBox<C>& bounds, C guard, const C (&o_lo)[3], const 
 // 2 eps of each plane, so that the grown plane's own rounding stays outside the margin
 // the roots need. Never culled where the margin is not a finite number, nor tried where
 // it is over kUntriedSpread times the distance or kUntriedGrowth times the box's widest
-// side: nearly every ray aimed near the box meets it then. (Whole process, 2 threads:
-// a crowd of 5,000 beside a ball 1e16 across, its rays from 1e16 away, medians of 3,
-// 7.01 s with the test, 6.27 s without, 5.80 s before boxes were grown; 2,000 discs
-// 1e-14 thick, 8.76 s before, 11.06 s with the test.)
+// side: nearly every ray aimed near the box meets it then, and the test would only cost
+// (docs/speed.md, "Rays from beyond the guards").
 inline constexpr double kUntriedGrowth = 256, kUntriedSpread = 1.0 / 16;
 template <typename C, int Width>
 bool meets_grown_child(const WideNode<C, Width>& node, int k, const SlabRay<C>& ray, C t1, C distance) {
