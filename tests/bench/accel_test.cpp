@@ -766,6 +766,25 @@ TEST(bvh_float_directions_below_the_normal_range) {
     CHECK_EQ(differing, 0);
 }
 
+// Random scene `seed` at 40x40 with n ellipsoids (Kd 0.6, Ks 0.3) centred at random in
+// [-side, side]^2 x [z_far, z_near], drawn from generator `placement`; shape(e, i, g) then
+// sets each one's scales and mirror.
+template <typename Shape>
+rt::Scene crowd(unsigned seed, unsigned placement, std::size_t n, double side, double z_far, double z_near,
+                Shape shape) {
+    rt::Scene s = stress::random_scene(seed);
+    s.columns = 40, s.rows = 40;
+    std::mt19937 g(placement);
+    s.spheres.resize(n, s.spheres.front());
+    for (std::size_t i = 0; i < n; ++i) {
+        rt::SphereSpec& e = s.spheres[i];
+        e.centre = {uniform(g, -side, side), uniform(g, -side, side), uniform(g, z_far, z_near)};
+        e.kd = 0.6, e.ks = 0.3;
+        shape(e, i, g);
+    }
+    return s;
+}
+
 // Discs 1e-11 thick seen from 10 to 30 away (|o'| up to 3e12, past the reach of a gap of
 // kCullingGap): their boxes are grown so that they cull rays from anywhere in the scene
 // (BoxGaps). The images stay the reference's, in double and long double.
@@ -775,17 +794,11 @@ TEST(thin_discs_far_away_are_culled_and_render_as_the_reference) {
     CHECK(gaps.gap(1e-11) > rt::kCullingGap && gaps.gap(1e-11) < 0.9);
     CHECK(gaps.guard(1e-11) > 79.9 && gaps.guard(0.3) > 79.9);  // the extent, within rounding
     CHECK(gaps.gap(1e-13) == rt::kLargestCullingGap && gaps.guard(1e-13) < 80);
-    rt::Scene s = stress::random_scene(4);
-    s.columns = 40, s.rows = 40;
-    std::mt19937 g(11);
-    s.spheres.resize(250, s.spheres.front());
-    for (std::size_t i = 0; i < s.spheres.size(); ++i) {
-        rt::SphereSpec& e = s.spheres[i];
-        e.centre = {uniform(g, -8, 8), uniform(g, -8, 8), uniform(g, -30, -10)};
+    rt::Scene s = crowd(4, 11, 250, 8, -30, -10, [](rt::SphereSpec& e, std::size_t i, std::mt19937&) {
         e.scale = {0.3, 0.3, 0.3};
         (i % 3 == 0 ? e.scale.x : i % 3 == 1 ? e.scale.y : e.scale.z) = 1e-11;
-        e.kd = 0.6, e.ks = 0.3, e.kr = i % 4 == 0 ? 0.5 : 0;
-    }
+        e.kr = i % 4 == 0 ? 0.5 : 0;
+    });
     // The tree's boxes are the grown ones: a point 5% beyond the rim of a disc set apart
     // (in a leaf of its own) lies in its box.
     rt::Scene apart = s;
@@ -803,20 +816,14 @@ TEST(thin_discs_far_away_are_culled_and_render_as_the_reference) {
 // A crowd half inside a ball 1e13 across whose surface passes through the camera: the
 // eye rays that enter the ball meet its far side 1e13 away, and the shadow and mirrored
 // rays from there start beyond every small box's guard. Those boxes are then grown for
-// the ray's distance (margin_per_reach(), children_met()) rather than tried unculled
+// the ray's distance (margin_per_reach(), meets_grown_child()) rather than tried unculled
 // (the crowd of 5,000 at 200x200: 2.08 s before, 0.11 s with them). The images stay the
 // reference's, in every precision.
 TEST(rays_from_beyond_the_guards_render_as_the_reference) {
-    rt::Scene s = stress::random_scene(5);
-    s.columns = 40, s.rows = 40;
-    std::mt19937 g(17);
-    s.spheres.resize(300, s.spheres.front());
-    for (std::size_t i = 0; i < s.spheres.size(); ++i) {
-        rt::SphereSpec& e = s.spheres[i];
-        e.centre = {uniform(g, -6, 6), uniform(g, -6, 6), uniform(g, -25, -8)};
+    rt::Scene s = crowd(5, 17, 300, 6, -25, -8, [](rt::SphereSpec& e, std::size_t i, std::mt19937& g) {
         e.scale = {uniform(g, 0.1, 0.4), uniform(g, 0.1, 0.4), uniform(g, 0.1, 0.4)};
-        e.kd = 0.6, e.ks = 0.3, e.kr = i % 5 == 0 ? 0.5 : 0;
-    }
+        e.kr = i % 5 == 0 ? 0.5 : 0;
+    });
     s.spheres.back().centre = {0, -1e13, -20}, s.spheres.back().scale = {1e13, 1e13, 1e13};
     CHECK(renders_as_plain<double>("a crowd beside a ball 1e13 across", s, 2));
     CHECK(renders_as_plain<long double>("a crowd beside a ball 1e13 across", s, 1));
