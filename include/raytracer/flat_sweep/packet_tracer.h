@@ -63,8 +63,8 @@ public:
         // medians of 15, took 7.35 ms in the tree against 7.77 flat at 150x150, 5.5
         // against 6.7 at 100x100, and the same at 200x200). Where no eye ray can hit
         // anything there is no shadow ray at all, and the light cones are not built
-        // (0.04 ms of testBehind's 1.8 ms run). The light cones that cull the candidates are exact
-        // only where rounding stays far below the spheres' inflation
+        // (0.04 ms of testBehind's 1.8 ms run). The light cones that cull the candidates
+        // are exact only where rounding stays far below the spheres' inflation
         // (everything_guarded()); elsewhere each packet tries every ellipsoid on every
         // lane, with the prefilter and intersect(), exact at any distance but slow past
         // a few ellipsoids, where the tree, whose boxes grow for thin ellipsoids, is far
