@@ -132,7 +132,7 @@ int write_image(const rt::CommandLine& command, const rt::Scene& scene) {
     // The file is created before the render, so that an unwritable OUTPUT is reported
     // before the render is spent on it; nothing of it is left on any error. A scene's
     // OUTPUT stays where choose_output() found it, in the working folder.
-    rt::PendingFile file(output.path.c_str(), output.destination, !output.named_by_user);
+    rt::PendingFile file(output.path.c_str(), output.destination, !output.named_by_user, output.descriptor);
     std::string error = file.error();
     if (error.empty()) {
         // The rows are written while later rows render (render.h).

@@ -70,10 +70,22 @@ std::string cannot_create(const std::string& name, const fs::path& folder, int e
     return start + std::strerror(error);
 }
 
-PendingFile::PendingFile(const char* file_name, Destination destination, bool within_working_folder)
+PendingFile::PendingFile(const char* file_name, Destination destination, bool within_working_folder,
+                         int descriptor)
     : name_(file_name == nullptr ? "" : file_name),
       destination_(destination),
       within_working_folder_(within_working_folder) {
+    if (destination_ == Destination::Descriptor) {
+#ifdef _WIN32
+        (void)descriptor;
+        error_ = shown(name_, kMaxShownPath) + " cannot be opened: no descriptors are passed on Windows";
+#else
+        fd_ = descriptor;
+        open_ = fd_ > 2;
+        if (!open_) error_ = shown(name_, kMaxShownPath) + " is not a descriptor to write into";
+#endif
+        return;
+    }
     if (destination_ == Destination::StandardOutput) {
         if (name_.empty()) name_ = "-";  // else as the user named it (-o /dev/stdout)
 #ifdef _WIN32

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <string>
 #include <system_error>
 #include <utility>
 #include <vector>
@@ -209,6 +210,47 @@ std::string outside_working_folder(const std::string& output) {
            std::system_category().message(error) + "), expected a file name in or below it" + elsewhere;
 }
 
+// The descriptor N that path names as /dev/fd/N or /proc/self/fd/N (Linux: its folder,
+// links followed, is /proc/<this process>/fd), N > 2, whether open or not; else -1.
+// Such a path is a link that /proc makes, which no file can replace.
+int descriptor_named(const std::string& path) {
+#ifdef __linux__
+    const fs::path named(path);
+    const std::string name = named.filename().string();
+    if (name.empty() || name.size() > 9 || name.find_first_not_of("0123456789") != std::string::npos)
+        return -1;
+    const int descriptor = std::stoi(name);
+    std::error_code ec;
+    const fs::path folder = fs::canonical(named.has_parent_path() ? named.parent_path() : ".", ec);
+    if (ec || folder != fs::path("/proc") / std::to_string(::getpid()) / "fd" ||
+        std::to_string(descriptor) != name || descriptor <= 2)
+        return -1;
+    return descriptor;
+#else
+    (void)path;
+    return -1;
+#endif
+}
+
+// Why descriptor N, named as path, cannot take the image, or empty.
+std::string unwritable_descriptor(const std::string& path, int descriptor) {
+#ifdef _WIN32
+    (void)path, (void)descriptor;
+    return {};
+#else
+    const int flags = ::fcntl(descriptor, F_GETFL);
+    if (flags < 0)
+        return shown(path, kMaxShownPath) + " is descriptor " + std::to_string(descriptor) +
+               ", which is not open, expected one open for writing (" + std::to_string(descriptor) +
+               "> file)";
+    if ((flags & O_ACCMODE) == O_RDONLY)
+        return shown(path, kMaxShownPath) + " is descriptor " + std::to_string(descriptor) +
+               ", which is open for reading only, expected one open for writing (" +
+               std::to_string(descriptor) + "> file)";
+    return {};
+#endif
+}
+
 // Why the path itself, whatever is there, cannot be the image's, or empty: a name the
 // system does not allow, one that names a folder, one too long.
 std::string unusable_path(const std::string& path) {
@@ -221,6 +263,21 @@ std::string unusable_path(const std::string& path) {
     if (name_too_long(path))
         return shown(path, kMaxShownPath) + " is too long a name or path for the system (" +
                std::strerror(ENAMETOOLONG) + "), expected a shorter one";
+    return {};
+}
+
+// Nor is a regular file that is standard input or error replaced, whoever names it:
+// the one is read, the other carries the messages; nor is a pipe that is standard input
+// written (this process holds its reading end: a pipe's worth would block it for good).
+// A device such as /dev/null is written into as usual. Why not, or empty.
+std::string standard_stream_refusal(const std::string& path, Existing existing) {
+    for (const auto& [stream, what] :
+         {std::pair<int, const char*>{0, "standard input, which is read"},
+          std::pair<int, const char*>{2, "standard error, where the messages go"}}) {
+        if ((existing == Existing::RegularFile || (stream == 0 && existing == Existing::Pipe)) &&
+            standard_stream_is(stream, path))
+            return shown(path, kMaxShownPath) + " is " + what + ", expected another file for the image";
+    }
     return {};
 }
 
@@ -254,6 +311,13 @@ OutputChoice choose_output(const std::string& scene_output, const std::string* u
     if (choice.named_by_user && existing == Existing::Folder)
         choice.refusal = closed_stream_named(choice.path);
     if (!choice.refusal.empty()) return choice;
+    // -o /dev/fd/N (3> f.ppm, 3>> f.ppm): a link that /proc makes, which cannot be
+    // replaced; the descriptor is written into as it is open, as standard output is.
+    const int descriptor = choice.named_by_user ? descriptor_named(choice.path) : -1;
+    if (descriptor >= 0 && existing == Existing::Nothing) {
+        choice.refusal = unwritable_descriptor(choice.path, descriptor);
+        return choice;
+    }
     if (existing == Existing::Nothing || existing == Existing::Folder)
         return choice;  // a folder: PendingFile says so
     if (from_standard_input ? existing == Existing::RegularFile && standard_stream_is(0, choice.path)
@@ -268,19 +332,13 @@ OutputChoice choose_output(const std::string& scene_output, const std::string* u
         choice.destination = Destination::StandardOutput;
         return choice;
     }
-    // Nor is a regular file that is standard input or error replaced, whoever names it:
-    // the one is read, the other carries the messages; nor is a pipe that is standard
-    // input written (this process holds its reading end: a pipe's worth would block it
-    // for good). A device such as /dev/null is written into as usual.
-    for (const auto& [stream, what] :
-         {std::pair<int, const char*>{0, "standard input, which is read"},
-          std::pair<int, const char*>{2, "standard error, where the messages go"}}) {
-        if ((existing == Existing::RegularFile || (stream == 0 && existing == Existing::Pipe)) &&
-            standard_stream_is(stream, choice.path)) {
-            choice.refusal =
-                shown(choice.path, kMaxShownPath) + " is " + what + ", expected another file for the image";
-            return choice;
-        }
+    choice.refusal = standard_stream_refusal(choice.path, existing);
+    if (!choice.refusal.empty()) return choice;
+    if (descriptor >= 0) {
+        choice.refusal = unwritable_descriptor(choice.path, descriptor);
+        choice.destination = Destination::Descriptor;
+        choice.descriptor = descriptor;
+        return choice;
     }
     if (existing == Existing::RegularFile) {
         const std::string why = unreplaceable(choice.path);

@@ -53,6 +53,7 @@ struct Options {
     unsigned closed_streams = 0;          // bit k: started with descriptor k closed (2>&- is 4)
     int stdin_fd = -1;                    // where the child's stdin comes from; -1: this process's
     uid_t user = 0;                       // run as this user and its group (by root); 0: as this one
+    int descriptor_3 = -1;                // what the child's descriptor 3 is; -1: as inherited
 };
 
 // Starts raytracer.exe with args in folder.work; stdout and stderr go to files in root.
@@ -76,6 +77,7 @@ pid_t start(const Scratch& folder, const std::vector<std::string>& args, const O
     dup2(out_fd, 1);
     dup2(err_fd, 2);
     if (options.stdin_fd >= 0) dup2(options.stdin_fd, 0);
+    if (options.descriptor_3 >= 0) dup2(options.descriptor_3, 3);
     for (int stream = 0; stream <= 2; ++stream)
         if ((options.closed_streams >> stream & 1U) != 0) close(stream);
     if (options.file_size_limit >= 0) {
@@ -1146,6 +1148,41 @@ TEST(o_naming_standard_output_writes_to_it) {
                                                    ", which is closed") != std::string::npos);
         }
     }
+}
+
+// -o /dev/fd/N: a descriptor the shell opened (3> f.ppm, 3>> f.ppm) is written into as
+// it is open, not replaced (a link that /proc makes: replacing it failed as "cannot be
+// created"); one open for reading only, or one not open, is refused before the render.
+TEST(o_naming_another_descriptor_writes_into_it) {
+#ifdef __linux__
+    const Scratch folder;
+    write_bytes(folder.work / "scene.txt", small_scene("out.ppm"));
+    CHECK_EQ(run(folder, {"scene.txt"}), 0);
+    const std::string image = read_bytes(folder.work / "out.ppm");
+    const fs::path target = folder.work / "descriptor.ppm";
+    for (const bool append : {false, true}) {
+        write_bytes(target, "HEAD");
+        Options options;
+        options.descriptor_3 = open(target.c_str(), O_WRONLY | (append ? O_APPEND : O_TRUNC));
+        CHECK(options.descriptor_3 >= 0);
+        CHECK_EQ(run(folder, {"-o", "/dev/fd/3", "scene.txt"}, options), 0);
+        close(options.descriptor_3);
+        CHECK_EQ(captured_stderr(folder), std::string());
+        CHECK(read_bytes(target) == (append ? "HEAD" + image : image));
+    }
+    Options reading;
+    reading.descriptor_3 = open(target.c_str(), O_RDONLY);
+    CHECK(reading.descriptor_3 >= 0);
+    CHECK_EQ(run(folder, {"-o", "/proc/self/fd/3", "scene.txt"}, reading), 3);
+    close(reading.descriptor_3);
+    CHECK_EQ(captured_stderr(folder),
+             std::string("raytracer.exe: error: -o '/proc/self/fd/3' is descriptor 3, which is open for "
+                         "reading only, expected one open for writing (3> file)\n"));
+    CHECK_EQ(run(folder, {"-o", "/dev/fd/200", "scene.txt"}), 3);
+    CHECK(captured_stderr(folder).find("'/dev/fd/200' is descriptor 200, which is not open") !=
+          std::string::npos);
+    CHECK(read_bytes(target) == "HEAD" + image);
+#endif
 }
 
 // A reader that stops reading (a pager, a slow converter) holds the render up, and the

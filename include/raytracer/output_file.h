@@ -32,6 +32,10 @@ enum class Destination {
     WriteInto,
     // Standard output (-o -).
     StandardOutput,
+    // A descriptor this process was started with, other than the standard streams
+    // (-o /dev/fd/3 with 3> f.ppm): written into as it is open, at its offset, as
+    // standard output is.
+    Descriptor,
 };
 
 // A path in the system's encoding, std::filesystem::path::string_type (UTF-16 on
@@ -49,8 +53,9 @@ public:
     // (a scene's OUTPUT, folder_place.h). On POSIX systems the folder is held open from
     // that check on, and the file is created, linked and renamed in it by descriptor, so
     // a folder on the way replaced meanwhile (by a link out) cannot move the image.
+    // descriptor: the one Destination::Descriptor writes into.
     explicit PendingFile(const char* file_name, Destination destination = Destination::Replace,
-                         bool within_working_folder = false);
+                         bool within_working_folder = false, int descriptor = -1);
     PendingFile(const PendingFile&) = delete;
     PendingFile& operator=(const PendingFile&) = delete;
     ~PendingFile();

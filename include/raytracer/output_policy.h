@@ -13,6 +13,7 @@ struct OutputChoice {
     std::string path;  // the file to write; "-" for standard output
     bool named_by_user = false;
     Destination destination = Destination::Replace;
+    int descriptor = -1;  // the one Destination::Descriptor writes into
     // Why the path is refused, as "<the path shown> <what it is>, expected <what>";
     // empty when it is not.
     std::string refusal;
