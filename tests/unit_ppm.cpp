@@ -10,6 +10,8 @@
 #ifdef _WIN32
 #include <io.h>  // _wunlink
 #include "raytracer/windows_api.h"
+#else
+#include <sys/stat.h>  // mkfifo
 #endif
 
 #include "check.h"
@@ -228,7 +230,8 @@ TEST(read_ppm_takes_only_a_well_formed_header) {
         std::string error;
         const bool read = rt::read_ppm(dir.file("h.ppm"), image, error);
         CHECK(read == error.empty());
-        CHECK(read || error.find("is not a binary PPM (P6) with maxval 255") != std::string::npos);
+        CHECK(read || error.find("is not a binary PPM (P6) with maxval 255") != std::string::npos ||
+              error.find("pixels, expected at least one") != std::string::npos);
         return read && image.width == 2 && image.height == 2;
     };
     CHECK(reads("P6\n2 2\n255\n" + pixels));
@@ -247,6 +250,23 @@ TEST(read_ppm_takes_only_a_well_formed_header) {
     CHECK(!reads("P6\n2 2\n65535\n" + pixels + pixels));
     CHECK(!reads("P6\n0 2\n255\n"));
     CHECK(!reads("P6\n2 2\n255"));
+}
+
+// An image of no pixels is named so (a grader reports it), not "not a binary PPM"; a FIFO
+// is refused before it is opened, which would wait for a writer for good.
+TEST(read_ppm_names_an_empty_image_and_refuses_what_is_not_a_file) {
+    ScratchFolder dir;
+    std::ofstream(dir.file("empty.ppm"), std::ios::binary) << "P6\n0 0\n255\n";
+    rt::Image image;
+    std::string error;
+    CHECK(!rt::read_ppm(dir.file("empty.ppm"), image, error));
+    CHECK(error.find("is a P6 of 0x0 pixels, expected at least one") != std::string::npos);
+#ifndef _WIN32
+    CHECK_EQ(::mkfifo(dir.file("fifo.ppm").c_str(), 0600), 0);
+    error.clear();
+    CHECK(!rt::read_ppm(dir.file("fifo.ppm"), image, error));
+    CHECK(error.find("is not a regular file") != std::string::npos);
+#endif
 }
 
 // A header claiming more than the file holds: refused as short, with no more memory

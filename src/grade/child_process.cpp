@@ -9,6 +9,7 @@
 #include <windows.h>
 #else
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -91,10 +92,12 @@ BOOL WINAPI on_console_event(DWORD /*event*/) {
 
 std::wstring quoted(const std::wstring& text) { return L"\"" + text + L"\""; }
 
+// The file made anew, or NUL for an empty path.
 HANDLE inheritable_output(const std::filesystem::path& file) {
     SECURITY_ATTRIBUTES attributes{sizeof(SECURITY_ATTRIBUTES), nullptr, TRUE};
-    return CreateFileW(file.wstring().c_str(), GENERIC_WRITE, FILE_SHARE_READ | FILE_SHARE_WRITE, &attributes,
-                       CREATE_ALWAYS, FILE_ATTRIBUTE_NORMAL, nullptr);
+    return CreateFileW(file.empty() ? L"NUL" : file.wstring().c_str(), GENERIC_WRITE,
+                       FILE_SHARE_READ | FILE_SHARE_WRITE, &attributes,
+                       file.empty() ? OPEN_EXISTING : CREATE_ALWAYS, FILE_ATTRIBUTE_NORMAL, nullptr);
 }
 
 }  // namespace
@@ -166,8 +169,11 @@ extern "C" void grader_on_interrupt(int signal) { g_interrupting_signal = signal
     // of file at once, the same on a terminal as in CI (in a process group of its own, a
     // read from the terminal would stop it with SIGTTIN until the timeout).
     const int in = open("/dev/null", O_RDONLY);
-    const int out = open(command.stdout_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    const int err = open(command.stderr_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int out = command.stdout_file.empty()
+                        ? open("/dev/null", O_WRONLY)
+                        : open(command.stdout_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    // Appended to, so that the file can be cut back under it (cut_back()).
+    const int err = open(command.stderr_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_APPEND, 0644);
     if (in >= 0 && out >= 0 && err >= 0 && dup2(in, 0) >= 0 && dup2(out, 1) >= 0 && dup2(err, 2) >= 0 &&
         chdir(command.folder.c_str()) == 0) {
         for (const int fd : {in, out, err})  // the program gets 0, 1 and 2, not copies besides
@@ -177,6 +183,14 @@ extern "C" void grader_on_interrupt(int signal) { g_interrupting_signal = signal
     const int error = errno;
     if (write(report_fd, &error, sizeof error) < 0) _exit(127);
     _exit(127);
+}
+
+// Cuts the file back to `kept` bytes once it holds twice that: the program's appends go
+// on after them.
+void cut_back(const std::filesystem::path& file, std::uintmax_t kept) {
+    struct stat s {};
+    if (kept > 0 && ::stat(file.c_str(), &s) == 0 && static_cast<std::uintmax_t>(s.st_size) > 2 * kept)
+        (void)::truncate(file.c_str(), static_cast<off_t>(kept));
 }
 
 void kill_and_reap(pid_t pid, int& status) {
@@ -243,6 +257,7 @@ ChildOutcome run_child(const ChildCommand& command) {
             outcome.end = late ? ChildOutcome::End::timed_out : ChildOutcome::End::interrupted;
             break;
         }
+        cut_back(command.stderr_file, command.stderr_kept);
         std::this_thread::sleep_for(pause);
         pause = std::min(pause * 2, std::chrono::microseconds(10000));
     }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstdlib>
+#include <limits>
 #include <vector>
 
 #include "ambiguous_pixels.h"
@@ -35,10 +36,12 @@ struct Canvas {
                 set(left + x, y, from.rgb[at], from.rgb[at + 1], from.rgb[at + 2]);
             }
     }
-    // A square ring around (cx, cy), clipped to the columns [first, end).
-    void ring(int cx, int cy, int first, int end) const {
+    // A square ring around (cx, cy), clipped to the columns [first, end), drawn only
+    // where bare(x, y): over no mark of another pixel.
+    template <typename Bare>
+    void ring(int cx, int cy, int first, int end, Bare bare) const {
         const auto dot = [&](int x, int y) {
-            if (x >= first && x < end) set(x, y, 255, 0, 255);
+            if (x >= first && x < end && bare(x, y)) set(x, y, 255, 0, 255);
         };
         for (int r = kRingRadius - 1; r <= kRingRadius; ++r) {
             for (int d = -r; d <= r; ++d) {
@@ -55,6 +58,8 @@ struct Canvas {
 
 rt::Image difference_picture(const std::string& key_name, const rt::Image& key, const rt::Image& got) {
     rt::Image picture;
+    // Three panels side by side: wider than an int can say, no picture (as for no key).
+    if (key.width > (std::numeric_limits<int>::max() - 2 * kGap) / 3) return picture;
     picture.width = 3 * key.width + 2 * kGap;
     picture.height = key.height;
     picture.rgb.assign(3 * static_cast<std::size_t>(picture.width) * static_cast<std::size_t>(picture.height),
@@ -87,8 +92,13 @@ rt::Image difference_picture(const std::string& key_name, const rt::Image& key, 
             }
         }
     }
+    const auto bare = [&](int x, int y) {
+        int largest = 0;
+        return y >= 0 && y < key.height &&
+               pixel_verdict(key, got, x - left, y, ambiguous, largest) == PixelVerdict::kSame;
+    };
     if (static_cast<long long>(unexplained.size()) <= kMaxRings)
-        for (const auto& [x, y] : unexplained) canvas.ring(left + x, y, left, left + key.width);
+        for (const auto& [x, y] : unexplained) canvas.ring(left + x, y, left, left + key.width, bare);
     return picture;
 }
 

@@ -100,7 +100,7 @@ std::string write_html_page(const fs::path& page, const std::vector<SceneResult>
     const fs::path folder = fs::absolute(page, ec).parent_path();
     for (std::size_t i = 0; i < results.size(); ++i)
         if (!pictures[i].empty())
-            write_picture(out, results[i], url_of(fs::relative(fs::absolute(pictures[i], ec), folder, ec)));
+            write_picture(out, results[i], url_of(fs::absolute(pictures[i], ec).lexically_relative(folder)));
     out << "</body>\n</html>\n";
 
     const std::string text = out.str();

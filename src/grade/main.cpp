@@ -80,10 +80,10 @@ fs::path write_picture(const grade::SceneResult& result, const fs::path& folder,
     std::error_code ec;
     fs::create_directories(folder, ec);
     fs::path file = folder / (result.name + ".png");
-    const std::string error =
-        ec ? "cannot make the folder '" + folder.string() + "': " + ec.message()
-           : grade::write_png(file.u8string(),
-                              grade::difference_picture(result.key_name, result.key, result.got));
+    const rt::Image picture = grade::difference_picture(result.key_name, result.key, result.got);
+    if (picture.rgb.empty()) return {};  // none for an image so wide
+    const std::string error = ec ? "cannot make the folder '" + folder.string() + "': " + ec.message()
+                                 : grade::write_png(file.u8string(), picture);
     if (error.empty()) return file;
     std::cerr << "raytracer-grade: error: " << error << "\n";
     failed = true;
@@ -176,7 +176,10 @@ std::vector<grade::SceneResult> grade_all(const std::vector<fs::path>& scenes, c
         if (result.interrupted) break;
         pictures.push_back(write_picture(result, picture_folder(options), pictures_failed));
         grade::print_scene(result, pictures.back().generic_string());
-        result.key = result.got = rt::Image{};  // the pictures are written; free the pixels
+        // The pictures are written: the pixels are freed (moved from, not copied over, which
+        // would keep their buffers: 1,500 scenes of 600x600 held 1.6 GB).
+        result.key = rt::Image{};
+        result.got = rt::Image{};
         results.push_back(std::move(result));
     }
     return results;
@@ -271,7 +274,9 @@ int main(int argc, char** argv) {
             std::cout << "page: " << options.html.string() << "\n";
     }
     if (!report_written()) return cannot_write_report();
-    if (!page_written || pictures_failed) return kCannotReadOrWrite;
+    const bool scratch_unwritable =
+        std::any_of(results.begin(), results.end(), [](const auto& r) { return r.scratch_unwritable; });
+    if (!page_written || pictures_failed || scratch_unwritable) return kCannotReadOrWrite;
     const bool all_passed =
         std::all_of(results.begin(), results.end(), [](const auto& r) { return r.passed(); });
     return all_passed ? 0 : 1;

@@ -57,6 +57,7 @@ Judgement judge(const std::string& key_name, const rt::Image& key, const rt::Ima
                 ++j.ambiguous;
             } else {
                 ++j.unexplained;
+                j.largest_unexplained = std::max(j.largest_unexplained, largest);
                 j.unexplained_box.add(x, y);
                 if (j.first_unexplained.size() < Judgement::kShown) {
                     const std::size_t at =

@@ -66,7 +66,9 @@ void print_scene(const SceneResult& r, const std::string& picture) {
     if (r.problem.empty() && !r.judgement.passed()) {
         const Judgement& j = r.judgement;
         const Box& b = j.unexplained_box;
-        std::printf("    %s, largest %d levels\n", describe_differences(j).c_str(), j.largest_difference);
+        // The largest of the pixels that fail it: an allowed pixel's is no reason.
+        std::printf("    %s, largest %d levels\n", describe_differences(j).c_str(),
+                    j.unexplained > 0 ? j.largest_unexplained : j.largest_difference);
         if (!b.empty())
             std::printf(
                 "    the unexplained pixels lie in x %d..%d, y %d..%d (column, row from the top-left)\n",

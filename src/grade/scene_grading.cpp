@@ -72,7 +72,7 @@ std::string describe_failed_run(const ChildOutcome& run, const Options& options,
 std::string not_a_file(fs::file_type type) {
     switch (type) {
         case fs::file_type::symlink:
-            return "a symbolic link to no regular file";
+            return "a symbolic link";
         case fs::file_type::fifo:
             return "a FIFO";
         case fs::file_type::socket:
@@ -117,9 +117,11 @@ std::string read_output(const fs::path& folder, const std::string& output_name, 
                " is outside the run's folder, expected a file name in it";
     const fs::path output = folder / name;
     std::error_code ec;
-    if (fs::is_directory(output, ec)) return "wrote a folder named " + output_name + " (OUTPUT of the scene)";
-    if (!fs::is_regular_file(output, ec)) {
-        const std::string what = not_a_file(fs::symlink_status(output, ec).type());
+    // The file itself, not what a link there names: a link to the key is no image written.
+    const fs::file_status status = fs::symlink_status(output, ec);
+    if (fs::is_directory(status)) return "wrote a folder named " + output_name + " (OUTPUT of the scene)";
+    if (!fs::is_regular_file(status)) {
+        const std::string what = not_a_file(status.type());
         if (!what.empty())
             return "wrote " + what + " named " + output_name + " (OUTPUT of the scene), not a file";
         return "wrote nothing named " + output_name + " (OUTPUT of the scene); " + files_in(folder);
@@ -228,9 +230,17 @@ SceneResult grade_scene(const fs::path& scene, const Options& options, const fs:
     // cannot leave files in the next scene's folder.
     const fs::path folder = scratch / ("run-" + result.name);
     remove_folder(folder);
-    fs::create_directories(folder);
-    const ChildCommand command{options.raytracer,      {scene.string()},       folder,
-                               scratch / "stdout.txt", scratch / "stderr.txt", options.timeout_seconds};
+    std::error_code made;
+    fs::create_directories(folder, made);
+    if (made) {  // the program under test may have taken the scratch folder's permissions
+        result.problem = "the grader cannot make the run's folder " +
+                         rt::shown(folder.u8string(), rt::kMaxShownPath) + ": " + made.message();
+        result.ungradable = result.scratch_unwritable = true;
+        return result;
+    }
+    // Its standard output is never read: the null device. Of stderr only the start is read.
+    const ChildCommand command{options.raytracer,      {scene.string()},        folder,     {},
+                               scratch / "stderr.txt", options.timeout_seconds, kStderrRead};
     const ChildOutcome run = run_child(command);
     result.seconds = run.seconds;
     result.interrupted = run.end == ChildOutcome::End::interrupted || interrupting_signal() != 0;

@@ -14,13 +14,14 @@
 namespace grade {
 
 struct SceneResult {
-    std::string name;                // "testShadow"
-    std::string key_name;            // "keyShadow"
-    std::string problem;             // why there is no image to compare; empty when compared
-    std::vector<std::string> notes;  // facts that do not fail the scene (slow render)
-    bool ungradable = false;         // the scene or its key cannot be read: not the program's doing
-    bool interrupted = false;        // the grader itself was interrupted meanwhile
-    double seconds = 0;              // the render's wall time
+    std::string name;                 // "testShadow"
+    std::string key_name;             // "keyShadow"
+    std::string problem;              // why there is no image to compare; empty when compared
+    std::vector<std::string> notes;   // facts that do not fail the scene (slow render)
+    bool ungradable = false;          // the scene or its key cannot be read: not the program's doing
+    bool interrupted = false;         // the grader itself was interrupted meanwhile
+    bool scratch_unwritable = false;  // the grader could not make the run's folder (exit 3)
+    double seconds = 0;               // the render's wall time
     Judgement judgement;
     rt::Image key, got;  // kept for the difference picture
     bool passed() const { return problem.empty() && judgement.passed(); }

@@ -21,6 +21,7 @@
 //   waits_for_enter  the key, then reads standard input to its end
 //   endless_stderr   (POSIX) 64 GiB of stderr without a newline (sparse), status 1
 //   fifo_output      (POSIX) a FIFO at the output's name
+//   link_to_key      (POSIX) a symbolic link to the key at the output's name, no image
 //   readonly_folder  (POSIX) the key, and a write-protected folder with a file in it
 #include <chrono>
 #include <cstdint>
@@ -159,6 +160,13 @@ int main(int argc, char** argv) {
         return 1;
     }
     if (mode == "fifo_output") return mkfifo(scene_output(argv[1]).c_str(), 0644) == 0 ? 0 : 8;
+    if (mode == "link_to_key") {
+        const std::string scene = std::filesystem::absolute(argv[1]).string();
+        const std::string file = scene.substr(scene.find_last_of('/') + 1);
+        const std::string key = scene.substr(0, scene.find_last_of('/')) + "/../keys/key" +
+                                file.substr(4, file.size() - 8) + ".ppm";
+        return symlink(key.c_str(), scene_output(argv[1]).c_str()) == 0 ? 0 : 8;
+    }
 #endif
     if (mode == "exit1") {
         std::cerr << "fake: error: cannot open the scene file\nsecond line\n";

@@ -3,7 +3,7 @@
 # scenes and keys, as the golden tests do, and are left out where those are absent.
 set(fake_modes black pixel64 one_level hang segfault exit1 wrong_size wrong_name p3 shifted huge_header escapes lax_header
                straggler trailing dozen_steps ambiguous_sides sparse_tail endless_comment waits_for_enter endless_stderr fifo_output
-               readonly_folder)
+               readonly_folder link_to_key)
 foreach(mode ${fake_modes})
   add_executable(fake_${mode} grade/fake_renderer.cpp)
   target_compile_definitions(fake_${mode} PRIVATE FAKE_MODE="${mode}")
@@ -88,6 +88,8 @@ if(NOT WIN32)
   # 64 GiB of stderr without a newline: its first 64 KiB read (escaped NUL bytes, cut).
   grade_test(endless-stderr endless_stderr 1 "exited with status 1: \\x00\\x00|marks 0/2" --only testShadow)
   grade_test(fifo-output fifo_output 1 "wrote a FIFO named testShadow.ppm (OUTPUT of the scene), not a file|marks 0/2" --only testShadow)
+  # A link to the key is no image written: the file itself is judged, not the link's target.
+  grade_test(link-to-key link_to_key 1 "wrote a symbolic link named testShadow.ppm (OUTPUT of the scene), not a file|marks 0/2" --only testShadow)
 endif()
 # (no brackets in the expected texts: CMake's lists do not split inside them)
 grade_test(escapes escapes 1 "exited with status 3: \\x1b|mred\\x1b|m \\x07|marks 0/2" --only testShadow)

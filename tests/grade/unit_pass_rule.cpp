@@ -81,8 +81,11 @@ TEST(a_known_ambiguous_pixel_may_show_its_other_outcome_but_only_in_its_own_key)
     CHECK(two.first_unexplained.size() == 1 && two.first_unexplained[0].ambiguous);
     CHECK((two.first_unexplained[0].other == std::array<std::uint8_t, 3>{255, 255, 255}));
     set(got, 400, 150, 1, 255);
-    set(got, 401, 150, 0, 0);  // its neighbour is not ambiguous
-    CHECK(!grade::judge("keyShadow", key, got).passed());
+    set(got, 401, 150, 0, 253);  // its neighbour is not ambiguous: 2 levels fail
+    const grade::Judgement beside = grade::judge("keyShadow", key, got);
+    CHECK(!beside.passed() && beside.ambiguous == 1 && beside.unexplained == 1);
+    // The report's "largest" is the failing pixel's 2, not the allowed one's 255.
+    CHECK(beside.largest_difference == 255 && beside.largest_unexplained == 2);
 }
 
 TEST(every_known_ambiguous_pixel_passes_with_its_other_outcome_and_fails_with_a_third_colour) {
