@@ -1,8 +1,9 @@
 // Runs the program under test as a child process with a time limit, in a given working
-// folder, its stdin from /dev/null (NUL), its stdout to a file or the null device, its stderr to a file; a
-// child that outlives the limit, or the grader's own interruption (SIGINT, SIGTERM, SIGHUP, SIGPIPE, Ctrl-C),
-// is killed and reaped, and on POSIX so is what it leaves running in its process group. POSIX: fork, execv,
-// waitpid in a poll loop; Windows: CreateProcessW, WaitForSingleObject.
+// folder, its stdin from /dev/null (NUL), its stdout to a file or the null device, its
+// stderr to a file; a child that outlives the limit, or the grader's own interruption
+// (SIGINT, SIGTERM, SIGHUP, SIGPIPE, Ctrl-C), is killed and reaped, and on POSIX so is
+// what it leaves running in its process group. POSIX: fork, execv, waitpid in a poll
+// loop; Windows: CreateProcessW, WaitForSingleObject.
 #pragma once
 
 #include <cstdint>
