@@ -134,13 +134,9 @@ void run_case(const fs::path& raytracer, const fs::path& scratch, const Case& c)
     if (failures == failures_before) std::cout << "ok    " << c.name << "\n";
 }
 
-bool running_as_root() {
-#ifdef _WIN32
-    return false;
-#else
-    return geteuid() == 0;
+#ifndef _WIN32
+bool running_as_root() { return geteuid() == 0; }
 #endif
-}
 
 // Bytes 1..255 in a fixed pseudo-random order: binary, but without the NUL byte that
 // load_scene spots first, so the parser itself must cope.
@@ -151,20 +147,8 @@ std::string binary_without_nul(std::size_t size) {
     return bytes;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-    if (argc != 3) {
-        std::cerr << "usage: bad_input <raytracer.exe> <tests/bad folder>\n";
-        return 2;
-    }
-    const fs::path raytracer = fs::absolute(argv[1]);
-    const fs::path bad = fs::absolute(argv[2]);
-    std::mt19937_64 random(std::random_device{}());
-    const fs::path scratch = fs::temp_directory_path() / ("raytracer-bad-" + std::to_string(random()));
-    fs::create_directories(scratch);
-
-    // The corpus: every scene listed, every listed scene present, at least 40 of them.
+// The corpus of tests/bad: every scene listed, every listed scene present, at least 40.
+void corpus_cases(const fs::path& raytracer, const fs::path& bad, const fs::path& scratch) {
     const std::vector<Expected> manifest = read_manifest(bad / "MANIFEST");
     expect(manifest.size() >= 40, "MANIFEST",
            "lists " + std::to_string(manifest.size()) + " scenes, expected 40+");
@@ -184,8 +168,10 @@ int main(int argc, char** argv) {
            "the file was written");
     expect(!fs::exists(scratch / "output_dot_dot.txt" / "out.ppm"), "output_dot_dot.txt",
            "the file was written");
+}
 
-    // The command line, and files that are not scene files at all.
+// The command line, and files that are not scene files at all.
+void command_line_cases(const fs::path& raytracer, const fs::path& bad, const fs::path& scratch) {
     const std::string good = (bad / "control_good.txt").string();
     const std::string good_text = run_program::read_file(good);
     run_case(raytracer, scratch, {"no-argument", {}, {"", 2, 0, "no scene file given"}, ""});
@@ -231,39 +217,62 @@ int main(int argc, char** argv) {
               {"", 1, 0, "is larger than 64 MiB, expected a scene file"},
               "/dev/zero"});
 #endif
+}
 
-    // Permissions: root may read and write anything, so these say nothing when run as
-    // root (as CI does); the same refusals are covered as root by output_under_a_file
-    // and output_missing_folder in the corpus.
+// Files this user may not read or write (POSIX permissions). Root may read and write
+// anything, so these say nothing when run as root (as CI does); the same refusals are
+// covered as root by output_under_a_file and output_missing_folder in the corpus.
+void permission_cases(const fs::path& raytracer, const fs::path& bad, const fs::path& scratch) {
+#ifdef _WIN32
+    (void)raytracer, (void)bad, (void)scratch;
+#else
     if (running_as_root()) {
         std::cout << "skip  unreadable-file, read-only-folder: running as root, permissions do not apply\n";
-    } else {
-#ifndef _WIN32
-        const fs::path unreadable = scratch / "unreadable.txt";
-        write_file(unreadable, good_text);
-        fs::permissions(unreadable, fs::perms::none);
-        run_case(raytracer, scratch,
-                 {"unreadable-file",
-                  {unreadable.string()},
-                  {"", 1, 0, "cannot be opened for reading"},
-                  unreadable.string()});
-        fs::permissions(unreadable, fs::perms::owner_read | fs::perms::owner_write);
-
-        // control_good.txt writes out.ppm into a working folder that is read-only.
-        const fs::path box = scratch / "read-only-folder", work = box / "work";
-        fs::create_directories(work);
-        write_file(work / "out.ppm", kPrecious);
-        fs::permissions(work, fs::perms::owner_read | fs::perms::owner_exec);
-        const run_program::Result r = run_program::run(raytracer, {good}, work, box);
-        ++cases_run;
-        expect(r.status == 3, "read-only-folder", "exit status " + std::to_string(r.status) + ", expected 3");
-        expect(r.err.find("its folder is not writable") != std::string::npos, "read-only-folder", r.err);
-        expect(run_program::read_file(work / "out.ppm") == kPrecious, "read-only-folder",
-               "out.ppm was changed");
-        expect(folder_listing(work).size() == 1, "read-only-folder", "a stray file was left");
-        fs::permissions(work, fs::perms::owner_all);
-#endif
+        return;
     }
+    const std::string good = (bad / "control_good.txt").string();
+    const std::string good_text = run_program::read_file(good);
+    const fs::path unreadable = scratch / "unreadable.txt";
+    write_file(unreadable, good_text);
+    fs::permissions(unreadable, fs::perms::none);
+    run_case(raytracer, scratch,
+             {"unreadable-file",
+              {unreadable.string()},
+              {"", 1, 0, "cannot be opened for reading"},
+              unreadable.string()});
+    fs::permissions(unreadable, fs::perms::owner_read | fs::perms::owner_write);
+
+    // control_good.txt writes out.ppm into a working folder that is read-only.
+    const fs::path box = scratch / "read-only-folder", work = box / "work";
+    fs::create_directories(work);
+    write_file(work / "out.ppm", kPrecious);
+    fs::permissions(work, fs::perms::owner_read | fs::perms::owner_exec);
+    const run_program::Result r = run_program::run(raytracer, {good}, work, box);
+    ++cases_run;
+    expect(r.status == 3, "read-only-folder", "exit status " + std::to_string(r.status) + ", expected 3");
+    expect(r.err.find("its folder is not writable") != std::string::npos, "read-only-folder", r.err);
+    expect(run_program::read_file(work / "out.ppm") == kPrecious, "read-only-folder", "out.ppm was changed");
+    expect(folder_listing(work).size() == 1, "read-only-folder", "a stray file was left");
+    fs::permissions(work, fs::perms::owner_all);
+#endif
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc != 3) {
+        std::cerr << "usage: bad_input <raytracer.exe> <tests/bad folder>\n";
+        return 2;
+    }
+    const fs::path raytracer = fs::absolute(argv[1]);
+    const fs::path bad = fs::absolute(argv[2]);
+    std::mt19937_64 random(std::random_device{}());
+    const fs::path scratch = fs::temp_directory_path() / ("raytracer-bad-" + std::to_string(random()));
+    fs::create_directories(scratch);
+
+    corpus_cases(raytracer, bad, scratch);
+    command_line_cases(raytracer, bad, scratch);
+    permission_cases(raytracer, bad, scratch);
 
     std::error_code ignored;
     fs::remove_all(scratch, ignored);
