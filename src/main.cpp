@@ -64,7 +64,9 @@ const char* usage_text() {
            "working folder, in it or below it (no absolute path, no '..'), and a new or\n"
            "regular file other than the scene itself; anything else needs -o. The image\n"
            "appears only when complete and keeps the replaced file's permissions: an error\n"
-           "or an interruption leaves nothing behind and an existing file as it was.\n"
+           "or an interruption leaves nothing behind and an existing file as it was (a\n"
+           "stream aside: -o -, a device, a FIFO, or on Linux -o /dev/fd/N for a\n"
+           "descriptor the shell opened, written into as it is open).\n"
            "\n"
            "Scene file: one statement per line, fields separated by spaces or tabs,\n"
            "in any order:\n"
@@ -121,9 +123,13 @@ int write_image(const rt::CommandLine& command, const rt::Scene& scene) {
                             rt::shown(output.path, rt::kMaxShownPath) +
                                 " is a terminal, expected a pipe or a file for a binary image");
     }
-    // -o - > f.ppm 2>&1 --progress (or 2>&1 | ...): the progress line would go into the image.
-    if (output.destination == rt::Destination::StandardOutput &&
-        command.progress == rt::CommandLine::Progress::Always && rt::standard_streams_are_one_stream(1, 2)) {
+    // -o - > f.ppm 2>&1 --progress (or 2>&1 | ..., or -o /dev/fd/3 3>&2): the progress line
+    // would go into the image.
+    const int stream = output.destination == rt::Destination::StandardOutput ? 1
+                       : output.destination == rt::Destination::Descriptor   ? output.descriptor
+                                                                             : -1;
+    if (stream >= 0 && command.progress == rt::CommandLine::Progress::Always &&
+        rt::standard_streams_are_one_stream(stream, 2)) {
         return cannot_write(command.scene_file, scene, output,
                             rt::shown(output.path, rt::kMaxShownPath) +
                                 " is also standard error, where --progress draws its line, expected "

@@ -211,7 +211,7 @@ std::string outside_working_folder(const std::string& output) {
 }
 
 // The descriptor N that path names as /dev/fd/N or /proc/self/fd/N (Linux: its folder,
-// links followed, is /proc/<this process>/fd), N > 2, whether open or not; else -1.
+// links followed, is /proc/self/fd's), N > 2, whether open or not; else -1.
 // Such a path is a link that /proc makes, which no file can replace.
 int descriptor_named(const std::string& path) {
 #ifdef __linux__
@@ -221,9 +221,10 @@ int descriptor_named(const std::string& path) {
         return -1;
     const int descriptor = std::stoi(name);
     std::error_code ec;
+    // /proc/self/fd as this process's /proc shows it (its own PID namespace's numbers).
     const fs::path folder = fs::canonical(named.has_parent_path() ? named.parent_path() : ".", ec);
-    if (ec || folder != fs::path("/proc") / std::to_string(::getpid()) / "fd" ||
-        std::to_string(descriptor) != name || descriptor <= 2)
+    if (ec || folder != fs::canonical("/proc/self/fd", ec) || ec || std::to_string(descriptor) != name ||
+        descriptor <= 2)
         return -1;
     return descriptor;
 #else
@@ -247,6 +248,9 @@ std::string unwritable_descriptor(const std::string& path, int descriptor) {
         return shown(path, kMaxShownPath) + " is descriptor " + std::to_string(descriptor) +
                ", which is open for reading only, expected one open for writing (" +
                std::to_string(descriptor) + "> file)";
+    if (::isatty(descriptor) != 0)  // as -o - on a terminal
+        return shown(path, kMaxShownPath) + " is descriptor " + std::to_string(descriptor) +
+               ", which is a terminal, expected a pipe or a file for a binary image";
     return {};
 #endif
 }

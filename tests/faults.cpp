@@ -1182,6 +1182,39 @@ TEST(o_naming_another_descriptor_writes_into_it) {
     CHECK(captured_stderr(folder).find("'/dev/fd/200' is descriptor 200, which is not open") !=
           std::string::npos);
     CHECK(read_bytes(target) == "HEAD" + image);
+    // A terminal is refused, as for -o - (the terminal drained meanwhile: were the image
+    // written there, the run would end with 0 rather than block).
+    {
+        const PseudoTerminal pty;
+        CHECK_EQ(fcntl(pty.master, F_SETFL, O_NONBLOCK), 0);
+        Options on_terminal;
+        on_terminal.descriptor_3 = pty.terminal;
+        const pid_t pid = start(folder, {"-o", "/dev/fd/3", "scene.txt"}, on_terminal);
+        char buffer[4096];
+        int status = 0;
+        while (waitpid(pid, &status, WNOHANG) == 0) {
+            while (read(pty.master, buffer, sizeof buffer) > 0) {
+            }
+            std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        }
+        CHECK(WIFEXITED(status) && WEXITSTATUS(status) == 3);
+        CHECK(captured_stderr(folder).find("is descriptor 3, which is a terminal") != std::string::npos);
+    }
+    // With --progress, standard error itself (a pipe: 3>&2) is refused: the line would go
+    // into the image.
+    int messages[2];
+    CHECK_EQ(pipe(messages), 0);
+    Options progress;
+    progress.stderr_fd = progress.descriptor_3 = messages[1];
+    CHECK_EQ(run(folder, {"--progress", "-o", "/dev/fd/3", "scene.txt"}, progress), 3);
+    close(messages[1]);
+    std::string said;
+    char buffer[4096];
+    for (ssize_t got; (got = read(messages[0], buffer, sizeof buffer)) > 0;)
+        said.append(buffer, static_cast<std::size_t>(got));
+    close(messages[0]);
+    CHECK(said.find("-o '/dev/fd/3' is also standard error, where --progress draws its line") !=
+          std::string::npos);
 #endif
 }
 

@@ -58,8 +58,9 @@ struct Canvas {
 
 rt::Image difference_picture(const std::string& key_name, const rt::Image& key, const rt::Image& got) {
     rt::Image picture;
-    // Three panels side by side: wider than an int can say, no picture (as for no key).
-    if (key.width > (std::numeric_limits<int>::max() - 2 * kGap) / 3) return picture;
+    // Three panels side by side, and a ring's reach past them: wider than an int can
+    // say, no picture (as for no key).
+    if (key.width > (std::numeric_limits<int>::max() - 2 * kGap - kRingRadius) / 3) return picture;
     picture.width = 3 * key.width + 2 * kGap;
     picture.height = key.height;
     picture.rgb.assign(3 * static_cast<std::size_t>(picture.width) * static_cast<std::size_t>(picture.height),

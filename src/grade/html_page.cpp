@@ -97,10 +97,15 @@ std::string write_html_page(const fs::path& page, const std::vector<SceneResult>
     for (const SceneResult& r : results) write_row(out, r);
     out << "</table>\n";
     std::error_code ec;
-    const fs::path folder = fs::absolute(page, ec).parent_path();
+    // Lexical, on normal paths: fs::relative() follows links (a page's folder reached
+    // through one got links the browser resolves elsewhere); a ".." left in would
+    // mislead lexically_relative().
+    const fs::path folder = fs::absolute(page, ec).lexically_normal().parent_path();
     for (std::size_t i = 0; i < results.size(); ++i)
         if (!pictures[i].empty())
-            write_picture(out, results[i], url_of(fs::absolute(pictures[i], ec).lexically_relative(folder)));
+            write_picture(
+                out, results[i],
+                url_of(fs::absolute(pictures[i], ec).lexically_normal().lexically_relative(folder)));
     out << "</body>\n</html>\n";
 
     const std::string text = out.str();

@@ -51,13 +51,13 @@ Judgement judge(const std::string& key_name, const rt::Image& key, const rt::Ima
             if (verdict == PixelVerdict::kSame) continue;
             ++j.differing;
             j.largest_difference = std::max(j.largest_difference, largest);
+            if (verdict != PixelVerdict::kAmbiguous) j.largest_failing = std::max(j.largest_failing, largest);
             if (verdict == PixelVerdict::kTruncationStep) {
                 ++j.truncation_steps;
             } else if (verdict == PixelVerdict::kAmbiguous) {
                 ++j.ambiguous;
             } else {
                 ++j.unexplained;
-                j.largest_unexplained = std::max(j.largest_unexplained, largest);
                 j.unexplained_box.add(x, y);
                 if (j.first_unexplained.size() < Judgement::kShown) {
                     const std::size_t at =

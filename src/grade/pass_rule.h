@@ -49,7 +49,7 @@ struct Judgement {
     long long ambiguous = 0;         // of those, known ambiguous pixels showing the other outcome
     long long unexplained = 0;       // the rest: each fails the scene
     int largest_difference = 0;      // in levels, over all differing pixels
-    int largest_unexplained = 0;     // in levels, over the unexplained ones
+    int largest_failing = 0;         // in levels, over all but the known ambiguous ones
     Box unexplained_box;             // where the unexplained pixels lie
     std::vector<PixelDifference> first_unexplained;  // in reading order, at most kShown
     bool too_many_steps() const { return truncation_steps > kMaxTruncationSteps; }

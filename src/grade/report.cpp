@@ -66,9 +66,8 @@ void print_scene(const SceneResult& r, const std::string& picture) {
     if (r.problem.empty() && !r.judgement.passed()) {
         const Judgement& j = r.judgement;
         const Box& b = j.unexplained_box;
-        // The largest of the pixels that fail it: an allowed pixel's is no reason.
-        std::printf("    %s, largest %d levels\n", describe_differences(j).c_str(),
-                    j.unexplained > 0 ? j.largest_unexplained : j.largest_difference);
+        // The largest of the pixels that fail it: an allowed ambiguous pixel's is no reason.
+        std::printf("    %s, largest %d levels\n", describe_differences(j).c_str(), j.largest_failing);
         if (!b.empty())
             std::printf(
                 "    the unexplained pixels lie in x %d..%d, y %d..%d (column, row from the top-left)\n",
@@ -85,10 +84,11 @@ void print_scene(const SceneResult& r, const std::string& picture) {
 }
 
 std::string print_summary(const std::vector<SceneResult>& results) {
-    long long passed = 0, not_rendered = 0, ungradable = 0;
+    long long passed = 0, not_rendered = 0, ungradable = 0, not_run = 0;
     for (const SceneResult& r : results) {
         passed += r.passed() ? 1 : 0;
-        ungradable += r.ungradable ? 1 : 0;
+        not_run += r.scratch_unwritable ? 1 : 0;
+        ungradable += r.ungradable && !r.scratch_unwritable ? 1 : 0;
         not_rendered += r.problem.empty() || r.ungradable ? 0 : 1;
     }
     const long long scenes = static_cast<long long>(results.size());
@@ -100,9 +100,12 @@ std::string print_summary(const std::vector<SceneResult>& results) {
         line += std::to_string(passed) + " of " + plural(scenes, "scene passes", "scenes pass");
         if (ungradable > 0)
             line += "; " + std::to_string(ungradable) + " without a readable scene or key to grade by";
+        if (not_run > 0)
+            line += "; " + std::to_string(not_run) + " not run: the grader could not make a folder";
         if (not_rendered > 0) line += "; " + std::to_string(not_rendered) + " gave no image to compare";
-        if (scenes - passed - not_rendered - ungradable > 0)
-            line += "; " + plural(scenes - passed - not_rendered - ungradable, "differs", "differ") +
+        if (scenes - passed - not_rendered - ungradable - not_run > 0)
+            line += "; " +
+                    plural(scenes - passed - not_rendered - ungradable - not_run, "differs", "differ") +
                     " beyond the rule";
     }
     line += passed == scenes ? ": PASS" : ": FAIL";

@@ -230,9 +230,12 @@ SceneResult grade_scene(const fs::path& scene, const Options& options, const fs:
     // cannot leave files in the next scene's folder.
     const fs::path folder = scratch / ("run-" + result.name);
     remove_folder(folder);
+    // The scratch folder is the grader's: a program run before may have taken its
+    // permissions (chmod 555 ..), which would keep every later scene from its run.
     std::error_code made;
+    fs::permissions(scratch, fs::perms::owner_all, fs::perm_options::add, made);
     fs::create_directories(folder, made);
-    if (made) {  // the program under test may have taken the scratch folder's permissions
+    if (made) {
         result.problem = "the grader cannot make the run's folder " +
                          rt::shown(folder.u8string(), rt::kMaxShownPath) + ": " + made.message();
         result.ungradable = result.scratch_unwritable = true;

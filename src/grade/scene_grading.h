@@ -18,7 +18,8 @@ struct SceneResult {
     std::string key_name;             // "keyShadow"
     std::string problem;              // why there is no image to compare; empty when compared
     std::vector<std::string> notes;   // facts that do not fail the scene (slow render)
-    bool ungradable = false;          // the scene or its key cannot be read: not the program's doing
+    bool ungradable = false;          // not the program's doing: the scene or its key cannot be
+                                      // read, or the run's folder made (scratch_unwritable)
     bool interrupted = false;         // the grader itself was interrupted meanwhile
     bool scratch_unwritable = false;  // the grader could not make the run's folder (exit 3)
     double seconds = 0;               // the render's wall time

@@ -2,8 +2,10 @@
 # together), and optionally a file it wrote. Lists are separated by '|'.
 #   cmake -DGRADER=exe "-DARGS=a|b" -DSTATUS=n "-DEXPECT=text|text" ["-DREJECT=text|..."]
 #         [-DEMULATOR=wine] [-DCLEAN=folder] ["-DCOPY=file|folder|file|folder..."]
-#         ["-DFILES=file|..."] [-DPAGE=file "-DPAGE_EXPECT=text|..."] -P expect.cmake
-# CLEAN is removed (and made empty) first, then COPY's pairs copy each file into its folder;
+#         ["-DFILES=file|..."] [-DPAGE=file "-DPAGE_EXPECT=text|..."] ["-DLINK=folder|link"]
+#         -P expect.cmake
+# CLEAN is removed (and made empty) first, then LINK's folder is made and a symbolic link
+# to it made at its link, then COPY's pairs copy each file into its folder;
 # FILES must exist afterwards; PAGE must contain each PAGE_EXPECT.
 foreach(variable GRADER STATUS EXPECT)
   if(NOT DEFINED ${variable})
@@ -16,6 +18,13 @@ endforeach()
 if(CLEAN)
   file(REMOVE_RECURSE "${CLEAN}")
   file(MAKE_DIRECTORY "${CLEAN}")
+endif()
+if(LINK)
+  string(REPLACE "|" ";" link "${LINK}")
+  list(GET link 0 link_target)
+  list(GET link 1 link_name)
+  file(MAKE_DIRECTORY "${link_target}")
+  file(CREATE_LINK "${link_target}" "${link_name}" SYMBOLIC)
 endif()
 string(REPLACE "|" ";" copies "${COPY}")
 while(copies)

@@ -22,6 +22,8 @@
 //   endless_stderr   (POSIX) 64 GiB of stderr without a newline (sparse), status 1
 //   fifo_output      (POSIX) a FIFO at the output's name
 //   link_to_key      (POSIX) a symbolic link to the key at the output's name, no image
+//   stdout_null      (POSIX) the key where standard output is the null device (nothing
+//                    of it is read), status 9 where it is anything else
 //   readonly_folder  (POSIX) the key, and a write-protected folder with a file in it
 #include <chrono>
 #include <cstdint>
@@ -160,6 +162,13 @@ int main(int argc, char** argv) {
         return 1;
     }
     if (mode == "fifo_output") return mkfifo(scene_output(argv[1]).c_str(), 0644) == 0 ? 0 : 8;
+    if (mode == "stdout_null") {
+        struct stat out {
+        }, null{};
+        if (fstat(1, &out) != 0 || stat("/dev/null", &null) != 0 || out.st_dev != null.st_dev ||
+            out.st_ino != null.st_ino || out.st_rdev != null.st_rdev)
+            return 9;
+    }
     if (mode == "link_to_key") {
         const std::string scene = std::filesystem::absolute(argv[1]).string();
         const std::string file = scene.substr(scene.find_last_of('/') + 1);

@@ -3,7 +3,7 @@
 # scenes and keys, as the golden tests do, and are left out where those are absent.
 set(fake_modes black pixel64 one_level hang segfault exit1 wrong_size wrong_name p3 shifted huge_header escapes lax_header
                straggler trailing dozen_steps ambiguous_sides sparse_tail endless_comment waits_for_enter endless_stderr fifo_output
-               readonly_folder link_to_key)
+               readonly_folder link_to_key stdout_null)
 foreach(mode ${fake_modes})
   add_executable(fake_${mode} grade/fake_renderer.cpp)
   target_compile_definitions(fake_${mode} PRIVATE FAKE_MODE="${mode}")
@@ -74,6 +74,14 @@ grade_test(html pixel64 1 "picture (key | yours | difference): ${grade_out}/html
 set(GRADE_EXTRA -DCLEAN=${grade_out}/html-alone "-DFILES=${grade_out}/html-alone/marks-pictures/testShadow.png"
                 -DPAGE=${grade_out}/html-alone/marks.html "-DPAGE_EXPECT=<img src=\"marks-pictures/testShadow.png\"")
 grade_test(html-alone black 1 "marks 0/2" --only testShadow --html ${grade_out}/html-alone/marks.html)
+if(NOT WIN32)
+  # A page in a folder reached through a symbolic link: its links are lexical, as the
+  # browser resolves them from the page's own address, not from the link's target.
+  set(GRADE_EXTRA -DCLEAN=${grade_out}/html-link "-DLINK=${grade_out}/html-link/real/deep|${grade_out}/html-link/via"
+                  -DPAGE=${grade_out}/html-link/via/page.html "-DPAGE_EXPECT=<img src=\"../pictures/testShadow.png\"")
+  grade_test(html-link black 1 "marks 0/2" --only testShadow --diff-dir ${grade_out}/html-link/pictures
+             --html ${grade_out}/html-link/via/page.html)
+endif()
 unset(GRADE_EXTRA)
 
 # Ways a renderer can go wrong that the grader must neither trust nor pass to the terminal.
@@ -89,6 +97,9 @@ if(NOT WIN32)
   grade_test(endless-stderr endless_stderr 1 "exited with status 1: \\x00\\x00|marks 0/2" --only testShadow)
   grade_test(fifo-output fifo_output 1 "wrote a FIFO named testShadow.ppm (OUTPUT of the scene), not a file|marks 0/2" --only testShadow)
   # A link to the key is no image written: the file itself is judged, not the link's target.
+  # Nothing of the program's standard output is read: it goes to the null device, not to
+  # a file that a chatty program would fill.
+  grade_test(stdout-null stdout_null 0 "marks 2/2" --only testShadow)
   grade_test(link-to-key link_to_key 1 "wrote a symbolic link named testShadow.ppm (OUTPUT of the scene), not a file|marks 0/2" --only testShadow)
 endif()
 # (no brackets in the expected texts: CMake's lists do not split inside them)

@@ -1,11 +1,12 @@
 // The pass rule of SPEC section 7: which differing pixels a scene may have, and what the
-// grader reports about the others.
+// grader reports about the others, in words and in the difference picture.
 #include <array>
 #include <cstdint>
 #include <string>
 
 #include "../check.h"
 #include "ambiguous_pixels.h"
+#include "diff_picture.h"
 #include "pass_rule.h"
 
 namespace {
@@ -85,7 +86,7 @@ TEST(a_known_ambiguous_pixel_may_show_its_other_outcome_but_only_in_its_own_key)
     const grade::Judgement beside = grade::judge("keyShadow", key, got);
     CHECK(!beside.passed() && beside.ambiguous == 1 && beside.unexplained == 1);
     // The report's "largest" is the failing pixel's 2, not the allowed one's 255.
-    CHECK(beside.largest_difference == 255 && beside.largest_unexplained == 2);
+    CHECK(beside.largest_difference == 255 && beside.largest_failing == 2);
 }
 
 TEST(every_known_ambiguous_pixel_passes_with_its_other_outcome_and_fails_with_a_third_colour) {
@@ -118,4 +119,35 @@ TEST(the_first_unexplained_pixels_are_listed_in_reading_order_and_counted_beyond
     CHECK(j.unexplained == 400 && j.first_unexplained.size() == grade::Judgement::kShown);
     CHECK(j.first_unexplained[1].x == 1 && j.first_unexplained[1].y == 0);
     CHECK(j.unexplained_box.right == 19 && j.unexplained_box.bottom == 19);
+}
+
+// The difference panel (the third, from 2 (width + 4)): each unexplained pixel red and
+// ringed in magenta, the ring never over another differing pixel's mark.
+TEST(the_difference_picture_rings_unexplained_pixels_over_no_other_mark) {
+    const rt::Image key = grey(60, 40, 50);
+    rt::Image got = key;
+    set(got, 20, 20, 0, 90);  // unexplained
+    set(got, 30, 20, 0, 90);  // unexplained, where the first one's ring passes (radius 10)
+    set(got, 20, 30, 0, 51);  // a truncation step, where it passes too
+    const rt::Image picture = grade::difference_picture("keyShadow", key, got);
+    const int left = 2 * (key.width + 4);
+    const auto at = [&](int x, int y) {
+        const std::size_t i = 3 * (static_cast<std::size_t>(y) * static_cast<std::size_t>(picture.width) +
+                                   static_cast<std::size_t>(left + x));
+        return std::array<int, 3>{picture.rgb[i], picture.rgb[i + 1], picture.rgb[i + 2]};
+    };
+    CHECK((at(20, 20) == std::array<int, 3>{208, 0, 0}));    // red, brighter by 2 a level
+    CHECK((at(30, 20) == std::array<int, 3>{208, 0, 0}));    // not the first one's ring
+    CHECK((at(20, 30) == std::array<int, 3>{0, 0, 160}));    // dark blue, not the ring
+    CHECK((at(10, 20) == std::array<int, 3>{255, 0, 255}));  // the ring itself
+    CHECK((at(20, 10) == std::array<int, 3>{255, 0, 255}));
+}
+
+// Three panels wider than an int: no picture, rather than an overflow (the pixels are
+// not read: a key that large is not made here).
+TEST(no_difference_picture_wider_than_an_int) {
+    rt::Image huge;
+    huge.width = 715'827'882;  // 3 x this + the gaps passes 2^31 - 1
+    huge.height = 1;
+    CHECK(grade::difference_picture("keyShadow", huge, huge).rgb.empty());
 }
