@@ -946,18 +946,15 @@ std::string progress_on_terminal(const Scratch& folder, unsigned short columns) 
     return shown;
 }
 
-// -o - with standard output on a terminal is refused: a binary image would garble it
-// (a device the user names with -o, a serial line too, is written into as asked).
-TEST(standard_output_on_a_terminal_is_refused) {
-    const Scratch folder;
-    write_bytes(folder.work / "scene.txt", small_scene("out.ppm"));
+// Runs raytracer.exe with args, descriptor `stream` (1 or 3) on a pseudo-terminal drained
+// meanwhile (were the image written there, the run would end with 0 rather than block on
+// a full terminal): the exit status.
+int run_on_terminal(const Scratch& folder, const std::vector<std::string>& args, int stream) {
     const PseudoTerminal pty;
     CHECK_EQ(fcntl(pty.master, F_SETFL, O_NONBLOCK), 0);
     Options on_terminal;
-    on_terminal.stdout_fd = pty.terminal;
-    // The terminal drained meanwhile: were the image written there, the run would end
-    // (and fail the check) rather than block on a full terminal.
-    const pid_t pid = start(folder, {"-o", "-", "scene.txt"}, on_terminal);
+    (stream == 1 ? on_terminal.stdout_fd : on_terminal.descriptor_3) = pty.terminal;
+    const pid_t pid = start(folder, args, on_terminal);
     char buffer[4096];
     int status = 0;
     while (waitpid(pid, &status, WNOHANG) == 0) {
@@ -965,7 +962,15 @@ TEST(standard_output_on_a_terminal_is_refused) {
         }
         std::this_thread::sleep_for(std::chrono::milliseconds(1));
     }
-    CHECK(WIFEXITED(status) && WEXITSTATUS(status) == 3);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 1000 + WTERMSIG(status);
+}
+
+// -o - with standard output on a terminal is refused: a binary image would garble it
+// (a device the user names with -o, a serial line too, is written into as asked).
+TEST(standard_output_on_a_terminal_is_refused) {
+    const Scratch folder;
+    write_bytes(folder.work / "scene.txt", small_scene("out.ppm"));
+    CHECK_EQ(run_on_terminal(folder, {"-o", "-", "scene.txt"}, 1), 3);
     CHECK(captured_stderr(folder).find("-o '-' is a terminal, expected a pipe or a file") !=
           std::string::npos);
 }
@@ -1182,24 +1187,9 @@ TEST(o_naming_another_descriptor_writes_into_it) {
     CHECK(captured_stderr(folder).find("'/dev/fd/200' is descriptor 200, which is not open") !=
           std::string::npos);
     CHECK(read_bytes(target) == "HEAD" + image);
-    // A terminal is refused, as for -o - (the terminal drained meanwhile: were the image
-    // written there, the run would end with 0 rather than block).
-    {
-        const PseudoTerminal pty;
-        CHECK_EQ(fcntl(pty.master, F_SETFL, O_NONBLOCK), 0);
-        Options on_terminal;
-        on_terminal.descriptor_3 = pty.terminal;
-        const pid_t pid = start(folder, {"-o", "/dev/fd/3", "scene.txt"}, on_terminal);
-        char buffer[4096];
-        int status = 0;
-        while (waitpid(pid, &status, WNOHANG) == 0) {
-            while (read(pty.master, buffer, sizeof buffer) > 0) {
-            }
-            std::this_thread::sleep_for(std::chrono::milliseconds(1));
-        }
-        CHECK(WIFEXITED(status) && WEXITSTATUS(status) == 3);
-        CHECK(captured_stderr(folder).find("is descriptor 3, which is a terminal") != std::string::npos);
-    }
+    // A terminal is refused, as for -o -.
+    CHECK_EQ(run_on_terminal(folder, {"-o", "/dev/fd/3", "scene.txt"}, 3), 3);
+    CHECK(captured_stderr(folder).find("is descriptor 3, which is a terminal") != std::string::npos);
     // With --progress, standard error itself (a pipe: 3>&2) is refused: the line would go
     // into the image.
     int messages[2];
