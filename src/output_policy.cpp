@@ -239,18 +239,14 @@ std::string unwritable_descriptor(const std::string& path, int descriptor) {
     (void)path, (void)descriptor;
     return {};
 #else
+    const std::string n = std::to_string(descriptor);
+    const std::string is = shown(path, kMaxShownPath) + " is descriptor " + n + ", which is ";
+    const std::string for_writing = ", expected one open for writing (" + n + "> file)";
     const int flags = ::fcntl(descriptor, F_GETFL);
-    if (flags < 0)
-        return shown(path, kMaxShownPath) + " is descriptor " + std::to_string(descriptor) +
-               ", which is not open, expected one open for writing (" + std::to_string(descriptor) +
-               "> file)";
-    if ((flags & O_ACCMODE) == O_RDONLY)
-        return shown(path, kMaxShownPath) + " is descriptor " + std::to_string(descriptor) +
-               ", which is open for reading only, expected one open for writing (" +
-               std::to_string(descriptor) + "> file)";
+    if (flags < 0) return is + "not open" + for_writing;
+    if ((flags & O_ACCMODE) == O_RDONLY) return is + "open for reading only" + for_writing;
     if (::isatty(descriptor) != 0)  // as -o - on a terminal
-        return shown(path, kMaxShownPath) + " is descriptor " + std::to_string(descriptor) +
-               ", which is a terminal, expected a pipe or a file for a binary image";
+        return is + "a terminal, expected a pipe or a file for a binary image";
     return {};
 #endif
 }

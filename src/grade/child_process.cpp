@@ -92,12 +92,11 @@ BOOL WINAPI on_console_event(DWORD /*event*/) {
 
 std::wstring quoted(const std::wstring& text) { return L"\"" + text + L"\""; }
 
-// The file made anew, or NUL for an empty path.
-HANDLE inheritable_output(const std::filesystem::path& file) {
+// The file made anew (NUL as it is), for a child to inherit.
+HANDLE inheritable_output(const wchar_t* file, DWORD disposition) {
     SECURITY_ATTRIBUTES attributes{sizeof(SECURITY_ATTRIBUTES), nullptr, TRUE};
-    return CreateFileW(file.empty() ? L"NUL" : file.wstring().c_str(), GENERIC_WRITE,
-                       FILE_SHARE_READ | FILE_SHARE_WRITE, &attributes,
-                       file.empty() ? OPEN_EXISTING : CREATE_ALWAYS, FILE_ATTRIBUTE_NORMAL, nullptr);
+    return CreateFileW(file, GENERIC_WRITE, FILE_SHARE_READ | FILE_SHARE_WRITE, &attributes, disposition,
+                       FILE_ATTRIBUTE_NORMAL, nullptr);
 }
 
 }  // namespace
@@ -112,7 +111,8 @@ ChildOutcome run_child(const ChildCommand& command) {
     ChildOutcome outcome;
     std::wstring line = quoted(command.program.wstring());
     for (const std::string& arg : command.args) line += L" " + quoted(std::filesystem::u8path(arg).wstring());
-    HANDLE out = inheritable_output(command.stdout_file), err = inheritable_output(command.stderr_file);
+    HANDLE out = inheritable_output(L"NUL", OPEN_EXISTING);
+    HANDLE err = inheritable_output(command.stderr_file.wstring().c_str(), CREATE_ALWAYS);
     STARTUPINFOW startup{};
     startup.cb = sizeof startup;
     startup.dwFlags = STARTF_USESTDHANDLES;
@@ -169,9 +169,7 @@ extern "C" void grader_on_interrupt(int signal) { g_interrupting_signal = signal
     // of file at once, the same on a terminal as in CI (in a process group of its own, a
     // read from the terminal would stop it with SIGTTIN until the timeout).
     const int in = open("/dev/null", O_RDONLY);
-    const int out = command.stdout_file.empty()
-                        ? open("/dev/null", O_WRONLY)
-                        : open(command.stdout_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int out = open("/dev/null", O_WRONLY);
     // Appended to, so that the file can be cut back under it (cut_back()).
     const int err = open(command.stderr_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_APPEND, 0644);
     if (in >= 0 && out >= 0 && err >= 0 && dup2(in, 0) >= 0 && dup2(out, 1) >= 0 && dup2(err, 2) >= 0 &&

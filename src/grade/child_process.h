@@ -1,9 +1,9 @@
 // Runs the program under test as a child process with a time limit, in a given working
-// folder, its stdin from /dev/null (NUL), its stdout to a file or the null device, its
-// stderr to a file; a child that outlives the limit, or the grader's own interruption
-// (SIGINT, SIGTERM, SIGHUP, SIGPIPE, Ctrl-C), is killed and reaped, and on POSIX so is
-// what it leaves running in its process group. POSIX: fork, execv, waitpid in a poll
-// loop; Windows: CreateProcessW, WaitForSingleObject.
+// folder, its stdin from and stdout to the null device (/dev/null, NUL: nothing of its
+// output is read), its stderr to a file; a child that outlives the limit, or the
+// grader's own interruption (SIGINT, SIGTERM, SIGHUP, SIGPIPE, Ctrl-C), is killed and
+// reaped, and on POSIX so is what it leaves running in its process group. POSIX: fork,
+// execv, waitpid in a poll loop; Windows: CreateProcessW, WaitForSingleObject.
 #pragma once
 
 #include <cstdint>
@@ -16,8 +16,7 @@ namespace grade {
 struct ChildCommand {
     std::filesystem::path program;
     std::vector<std::string> args;
-    std::filesystem::path folder;       // the working folder
-    std::filesystem::path stdout_file;  // empty: the null device
+    std::filesystem::path folder;  // the working folder
     std::filesystem::path stderr_file;
     double timeout_seconds = 60;
     // POSIX: the bytes of stderr kept; past twice that, the file is cut back to it while

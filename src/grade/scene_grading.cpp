@@ -241,8 +241,8 @@ SceneResult grade_scene(const fs::path& scene, const Options& options, const fs:
         result.ungradable = result.scratch_unwritable = true;
         return result;
     }
-    // Its standard output is never read: the null device. Of stderr only the start is read.
-    const ChildCommand command{options.raytracer,      {scene.string()},        folder,     {},
+    // Of stderr only the start is read (its standard output not at all).
+    const ChildCommand command{options.raytracer,      {scene.string()},        folder,
                                scratch / "stderr.txt", options.timeout_seconds, kStderrRead};
     const ChildOutcome run = run_child(command);
     result.seconds = run.seconds;
